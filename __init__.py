@@ -1,0 +1,12 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Sandscape: desert scenes for Blender (glinting sand, footprints, dusty light)."""
+
+from .addon import registration
+
+
+def register():
+    registration.register()
+
+
+def unregister():
+    registration.unregister()

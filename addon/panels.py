@@ -1,0 +1,36 @@
+"""The Sandscape tab in the 3D viewport sidebar."""
+
+import bpy
+
+from ..node_groups import sand_material
+
+
+class SANDSCAPE_PT_sand(bpy.types.Panel):
+    bl_label = "Sand"
+    bl_idname = "SANDSCAPE_PT_sand"
+    bl_space_type = "VIEW_3D"
+    bl_region_type = "UI"
+    bl_category = "Sandscape"
+
+    def draw(self, context):
+        layout = self.layout
+        obj = context.active_object
+        material = sand_material.find_sand_material(obj) if obj is not None else None
+        text = "Update Sand Material" if material else "Add Sand Material"
+        layout.operator("sandscape.add_sand_material", text=text, icon="MATERIAL")
+        node = sand_material.glint_node(material)
+        if node is None:
+            if obj is not None and obj.type == "MESH":
+                layout.label(text="No Sandscape material on this object")
+            return
+        layout.label(text=material.name, icon="MATERIAL")
+        column = layout.column(align=True)
+        for socket in node.inputs:
+            if not socket.is_linked and hasattr(socket, "default_value"):
+                column.prop(socket, "default_value", text=socket.name)
+        image = sand_material.image_node(material)
+        if image is not None:
+            layout.template_ID(image, "image", open="image.open")
+
+
+classes = (SANDSCAPE_PT_sand,)

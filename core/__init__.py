@@ -1,0 +1,1 @@
+"""Pure numpy logic: no bpy, no mathutils (a test enforces this)."""

@@ -1,0 +1,88 @@
+"""Blender's white-noise hash (Bob Jenkins' lookup3, as in Cycles' util/hash.h) in numpy.
+
+The White Noise Texture node hashes the *bit patterns* of its float inputs, so the
+twin reinterprets float32 as uint32 and runs the same integer mixing on arrays.
+"""
+
+import numpy as np
+
+_U32 = np.uint32
+# float(n) * (1 / 0xFFFFFFFF) in float32, the way Cycles maps a hash to [0, 1].
+_UINT_TO_UNIT = np.float32(1.0 / 0xFFFFFFFF)
+
+
+def _rot(x, k):
+    return (x << _U32(k)) | (x >> _U32(32 - k))
+
+
+def _mix(a, b, c):
+    a = a - c; a = a ^ _rot(c, 4); c = c + b  # noqa: E702 (one lookup3 line per row)
+    b = b - a; b = b ^ _rot(a, 6); a = a + c  # noqa: E702
+    c = c - b; c = c ^ _rot(b, 8); b = b + a  # noqa: E702
+    a = a - c; a = a ^ _rot(c, 16); c = c + b  # noqa: E702
+    b = b - a; b = b ^ _rot(a, 19); a = a + c  # noqa: E702
+    c = c - b; c = c ^ _rot(b, 4); b = b + a  # noqa: E702
+    return a, b, c
+
+
+def _final(a, b, c):
+    c = c ^ b; c = c - _rot(b, 14)  # noqa: E702
+    a = a ^ c; a = a - _rot(c, 11)  # noqa: E702
+    b = b ^ a; b = b - _rot(a, 25)  # noqa: E702
+    c = c ^ b; c = c - _rot(b, 16)  # noqa: E702
+    a = a ^ c; a = a - _rot(c, 4)  # noqa: E702
+    b = b ^ a; b = b - _rot(a, 14)  # noqa: E702
+    c = c ^ b; c = c - _rot(b, 24)  # noqa: E702
+    return a, b, c
+
+
+def _start(n_words, shape):
+    return np.full(shape, (0xDEADBEEF + (n_words << 2) + 13) & 0xFFFFFFFF, dtype=_U32)
+
+
+def hash_uint3(kx, ky, kz):
+    kx, ky, kz = np.broadcast_arrays(*(np.asarray(k, dtype=_U32) for k in (kx, ky, kz)))
+    a = _start(3, kx.shape)
+    b = a.copy()
+    c = a.copy()
+    with np.errstate(over="ignore"):
+        c = c + kz
+        b = b + ky
+        a = a + kx
+        return _final(a, b, c)[2]
+
+
+def hash_uint4(kx, ky, kz, kw):
+    kx, ky, kz, kw = np.broadcast_arrays(*(np.asarray(k, dtype=_U32) for k in (kx, ky, kz, kw)))
+    a = _start(4, kx.shape)
+    b = a.copy()
+    c = a.copy()
+    with np.errstate(over="ignore"):
+        a = a + kx
+        b = b + ky
+        c = c + kz
+        a, b, c = _mix(a, b, c)
+        a = a + kw
+        return _final(a, b, c)[2]
+
+
+def float_bits(x):
+    """The uint32 bit pattern of float32 values (what Cycles' __float_as_uint does)."""
+    return np.ascontiguousarray(x, dtype=np.float32).view(_U32)
+
+
+def uint_to_unit(n):
+    return n.astype(np.float32) * _UINT_TO_UNIT
+
+
+def white_noise_3d(vector):
+    """Value output of the White Noise Texture node in 3D mode; vector has shape (..., 3)."""
+    v = float_bits(vector)
+    return uint_to_unit(hash_uint3(v[..., 0], v[..., 1], v[..., 2]))
+
+
+def white_noise_4d(vector, w):
+    """Value output of the White Noise Texture node in 4D mode (vector (..., 3), scalar or array w)."""
+    v = float_bits(vector)
+    wb = np.broadcast_to(float_bits(np.asarray(w, dtype=np.float32)), v.shape[:-1])
+    return uint_to_unit(hash_uint4(v[..., 0], v[..., 1], v[..., 2], wb))

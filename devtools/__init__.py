@@ -1,0 +1,1 @@
+"""Developer tooling shared by tests, benchmarks and the demo script (not shipped)."""

@@ -1,0 +1,96 @@
+"""Evaluate node outputs and renders numerically: bake into numpy, render into numpy."""
+
+import pathlib
+import tempfile
+
+import bpy
+import numpy as np
+
+
+def cycles_scene(scene=None, resolution=(64, 64), samples=1):
+    """Cycles on the CPU, exact pixels: no denoiser, no dithering, Standard view, 1 sample."""
+    scene = scene or bpy.context.scene
+    scene.render.engine = "CYCLES"
+    scene.cycles.device = "CPU"
+    scene.cycles.samples = samples
+    scene.cycles.use_adaptive_sampling = False
+    scene.cycles.use_denoising = False  # on by default in 5.0, and it smears per channel
+    scene.render.dither_intensity = 0.0
+    scene.view_settings.view_transform = "Standard"
+    scene.render.resolution_x, scene.render.resolution_y = resolution
+    scene.render.resolution_percentage = 100
+    return scene
+
+
+def uv_plane(size=2.0, name="Bake Plane"):
+    """A plane of `size` metres centred on the origin, UV 0..1, selected and active."""
+    bpy.ops.mesh.primitive_plane_add(size=size)
+    obj = bpy.context.active_object
+    obj.name = name
+    return obj
+
+
+def pixel_centres(resolution, low=-1.0, high=1.0):
+    """Coordinates of pixel centres along one axis of a [low, high] span, in float32."""
+    return (low + (np.arange(resolution) + 0.5) / resolution * (high - low)).astype(np.float32)
+
+
+def bake_emit(obj, material, resolution):
+    """Bake the material's emission on obj at 1 sample (the pixel centre); (res, res, 4), rows bottom-up."""
+    scene = cycles_scene(bpy.context.scene, samples=1)
+    scene.cycles.bake_type = "EMIT"
+    scene.render.bake.target = "IMAGE_TEXTURES"
+    scene.render.bake.margin = 0
+    image = bpy.data.images.new("Sandscape Bake", resolution, resolution, float_buffer=True, alpha=False)
+    image.colorspace_settings.name = "Non-Color"
+    target = material.node_tree.nodes.new("ShaderNodeTexImage")
+    target.image = image
+    material.node_tree.nodes.active = target
+    for other in bpy.context.view_layer.objects:
+        other.select_set(False)
+    obj.select_set(True)
+    bpy.context.view_layer.objects.active = obj
+    try:
+        bpy.ops.object.bake(type="EMIT")
+        pixels = np.empty(resolution * resolution * 4, np.float32)
+        image.pixels.foreach_get(pixels)
+    finally:
+        material.node_tree.nodes.remove(target)
+        bpy.data.images.remove(image)
+    return pixels.reshape(resolution, resolution, 4)
+
+
+def render(scene=None):
+    """Render the scene's camera into numpy: (H, W, 4) float32, rows bottom-up (Blender's order).
+
+    Background mode keeps no Render Result pixels, so the frame goes through a 32-bit EXR.
+    """
+    scene = scene or bpy.context.scene
+    settings = scene.render.image_settings
+    settings.file_format = "OPEN_EXR"
+    settings.color_depth = "32"
+    with tempfile.TemporaryDirectory(prefix="sandscape-render-") as tmp:
+        path = pathlib.Path(tmp) / "frame.exr"
+        scene.render.filepath = str(path)
+        bpy.ops.render.render(write_still=True, scene=scene.name)
+        image = bpy.data.images.load(str(path), check_existing=False)
+        try:
+            width, height = image.size
+            pixels = np.empty(width * height * 4, np.float32)
+            image.pixels.foreach_get(pixels)
+        finally:
+            bpy.data.images.remove(image)
+    return pixels.reshape(height, width, 4)
+
+
+def data_snapshot():
+    """Names of every data-block in every bpy.data collection, to show nothing changed."""
+    snapshot = {}
+    for attr in dir(bpy.data):
+        collection = getattr(bpy.data, attr, None)
+        if isinstance(collection, bpy.types.bpy_prop_collection) and attr != "window_managers":
+            try:
+                snapshot[attr] = sorted(item.name_full for item in collection)
+            except (AttributeError, TypeError):
+                continue
+    return snapshot

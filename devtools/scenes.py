@@ -1,0 +1,102 @@
+"""Small scenes with known geometry, for tests and benchmarks."""
+
+import bpy
+import numpy as np
+
+
+def group_material(group, values, output="Mask", name="Probe"):
+    """A material that emits one output of a node group (a float output becomes a grey colour)."""
+    material = bpy.data.materials.new(name)
+    tree = material.node_tree
+    tree.nodes.clear()
+    node = tree.nodes.new("ShaderNodeGroup")
+    node.node_tree = group
+    for key, value in values.items():
+        node.inputs[key].default_value = value
+    out = tree.nodes.new("ShaderNodeOutputMaterial")
+    if output == "Emission":
+        tree.links.new(node.outputs["Emission"], out.inputs["Surface"])
+    else:
+        emission = tree.nodes.new("ShaderNodeEmission")
+        emission.inputs["Strength"].default_value = 1.0
+        tree.links.new(node.outputs[output], emission.inputs["Color"])
+        tree.links.new(emission.outputs[0], out.inputs["Surface"])
+    return material
+
+
+def analytic_sphere(material, radius=1.0, location=(0.0, 0.0, 0.0)):
+    """A true sphere: a one-point point cloud, which Cycles intersects analytically."""
+    mesh = bpy.data.meshes.new("Sphere Point")
+    mesh.from_pydata([(0.0, 0.0, 0.0)], [], [])
+    obj = bpy.data.objects.new("Analytic Sphere", mesh)
+    obj.location = location
+    bpy.context.scene.collection.objects.link(obj)
+    tree = bpy.data.node_groups.new("Point Sphere", "GeometryNodeTree")
+    tree.interface.new_socket("Geometry", in_out="INPUT", socket_type="NodeSocketGeometry")
+    tree.interface.new_socket("Geometry", in_out="OUTPUT", socket_type="NodeSocketGeometry")
+    group_in = tree.nodes.new("NodeGroupInput")
+    group_out = tree.nodes.new("NodeGroupOutput")
+    to_points = tree.nodes.new("GeometryNodeMeshToPoints")
+    to_points.inputs["Radius"].default_value = radius
+    set_material = tree.nodes.new("GeometryNodeSetMaterial")
+    set_material.inputs["Material"].default_value = material
+    tree.links.new(group_in.outputs[0], to_points.inputs["Mesh"])
+    tree.links.new(to_points.outputs[0], set_material.inputs["Geometry"])
+    tree.links.new(set_material.outputs[0], group_out.inputs[0])
+    obj.modifiers.new("Point Sphere", "NODES").node_group = tree
+    return obj
+
+
+def camera(kind="ORTHO", location=(0.0, 0.0, 10.0), rotation=(0.0, 0.0, 0.0), ortho_scale=2.2,
+           lens=50.0):
+    data = bpy.data.cameras.new("Probe Camera")
+    data.type = kind
+    data.ortho_scale = ortho_scale
+    data.lens = lens
+    data.clip_end = 1000.0
+    obj = bpy.data.objects.new("Probe Camera", data)
+    obj.location = location
+    obj.rotation_euler = rotation
+    bpy.context.scene.collection.objects.link(obj)
+    bpy.context.scene.camera = obj
+    return obj
+
+
+def sharp_pixels(scene=None):
+    """1 sample taken at the pixel centre: the narrowest box filter Cycles allows (0.01 px)."""
+    scene = scene or bpy.context.scene
+    scene.cycles.pixel_filter_type = "BOX"
+    scene.cycles.filter_width = 0.01
+    return scene
+
+
+def camera_rays(camera_obj, width, height):
+    """World-space origins and unit directions of the rays through every pixel centre.
+
+    Arrays (height, width, 3), rows bottom-up like Blender's pixels.
+    """
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    projection = np.array(camera_obj.calc_matrix_camera(depsgraph, x=width, y=height))
+    view = np.array(camera_obj.matrix_world.inverted())
+    inverse = np.linalg.inv(projection @ view)
+    xs = (np.arange(width) + 0.5) / width * 2.0 - 1.0
+    ys = (np.arange(height) + 0.5) / height * 2.0 - 1.0
+    x, y = np.meshgrid(xs, ys)
+    ends = []
+    for depth in (-1.0, 1.0):
+        clip = np.stack([x, y, np.full_like(x, depth), np.ones_like(x)], axis=-1)
+        world = clip @ inverse.T
+        ends.append(world[..., :3] / world[..., 3:4])
+    direction = ends[1] - ends[0]
+    return ends[0], direction / np.linalg.norm(direction, axis=-1, keepdims=True)
+
+
+def project(camera_obj, points, width, height):
+    """Pixel coordinates (column, row from the bottom, float) of world points seen by a camera."""
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    projection = np.array(camera_obj.calc_matrix_camera(depsgraph, x=width, y=height))
+    view = np.array(camera_obj.matrix_world.inverted())
+    homogeneous = np.concatenate([points, np.ones(points.shape[:-1] + (1,))], axis=-1)
+    clip = homogeneous @ (projection @ view).T
+    ndc = clip[..., :2] / clip[..., 3:4]
+    return (ndc[..., 0] + 1.0) / 2.0 * width, (ndc[..., 1] + 1.0) / 2.0 * height

@@ -1,0 +1,62 @@
+"""Sandscape Glints: procedural glints on object-space cells.
+
+Each cell of Glint Size metres (in the object's own space, so glints stick to the
+surface and do not crawl when the camera moves) gets a white-noise value seeded by
+Seed; Sandscape Glint Shade turns it into the glint. Twin: core.glints.glints.
+"""
+
+from . import glint_shade
+from . import helper as h
+
+NAME = "Sandscape Glints"
+VERSION = 1
+TREE_TYPE = "ShaderNodeTree"
+
+
+def build(tree):
+    tree.description = (
+        "Sparkling sand grains: object-space cells of Glint Size metres, a seeded random "
+        "value per cell, lit above Threshold and only where the view meets the normal")
+    h.add_input(tree, "Threshold", "NodeSocketFloat",
+                "Cells whose noise exceeds this glint: about (1 - threshold) of the cells glint",
+                0.97, 0.0, 1.0, "FACTOR")
+    h.add_input(tree, "Glint Size", "NodeSocketFloat",
+                "Edge of a glint cell in metres of object space (scaling the object scales it)",
+                0.003, 0.0, None, "DISTANCE")
+    h.add_input(tree, "Facing Power", "NodeSocketFloat",
+                "Exponent on N·V: higher keeps glints to where the view lines up with the "
+                "normal; 0 shows them at every angle", 8.0, 0.0)
+    h.add_input(tree, "Color", "NodeSocketColor", "Glint colour", (1.0, 0.95, 0.85, 1.0))
+    h.add_input(tree, "Strength", "NodeSocketFloat", "Emission strength of a fully facing glint",
+                30.0, 0.0)
+    h.add_input(tree, "Seed", "NodeSocketFloat",
+                "Another seed gives another random set of glinting cells", 0.0)
+    h.add_output(tree, "Emission", "NodeSocketShader", "The glints as an emission shader")
+    h.add_output(tree, "Mask", "NodeSocketFloat",
+                 "Glint coverage 0..1: lit cell × (N·V)^power, without colour or strength")
+    h.add_output(tree, "Glint Color", "NodeSocketColor",
+                 "Colour × Strength × Mask, for an Emission Color input")
+
+    group_in, group_out = h.group_io(tree)
+    inputs = group_in.outputs
+    coords = h.add_node(tree, "ShaderNodeTexCoord", (-700, 200))
+    scaled = h.add_node(tree, "ShaderNodeVectorMath", (-500, 200), "Position / Size", operation="DIVIDE")
+    h.link(tree, coords.outputs["Object"], scaled.inputs[0])
+    h.link(tree, inputs["Glint Size"], scaled.inputs[1])
+    # Cells are centred on multiples of the size: a surface through the origin (z = 0 in
+    # object space) lies mid-cell, where transform round-off cannot flip it between two cells.
+    centred = h.add_node(tree, "ShaderNodeVectorMath", (-400, 200), "Centre Cells", operation="ADD",
+                         inputs={1: (0.5, 0.5, 0.5)})
+    h.link(tree, scaled.outputs[0], centred.inputs[0])
+    cell = h.add_node(tree, "ShaderNodeVectorMath", (-300, 200), "Cell", operation="FLOOR")
+    h.link(tree, centred.outputs[0], cell.inputs[0])
+    noise = h.add_node(tree, "ShaderNodeTexWhiteNoise", (-100, 200), noise_dimensions="4D")
+    h.link(tree, cell.outputs[0], noise.inputs["Vector"])
+    h.link(tree, inputs["Seed"], noise.inputs["W"])
+
+    shade = h.add_node(tree, "ShaderNodeGroup", (150, 0), node_tree=h.ensure_group(glint_shade))
+    h.link(tree, noise.outputs["Value"], shade.inputs["Noise"])
+    for name in ("Threshold", "Facing Power", "Color", "Strength"):
+        h.link(tree, inputs[name], shade.inputs[name])
+    for name in ("Emission", "Mask", "Glint Color"):
+        h.link(tree, shade.outputs[name], group_out.inputs[name])

@@ -1,0 +1,1 @@
+"""Thin operators, one module per capability: validate, call a builder or core, report."""

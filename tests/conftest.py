@@ -1,0 +1,29 @@
+"""One Blender session for the whole run: isolated user directory, the working tree
+installed as extension bl_ext.local.sandscape, and an empty file before every test."""
+
+import pathlib
+import sys
+
+REPO_ROOT = pathlib.Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(REPO_ROOT))
+
+from devtools import session  # noqa: E402
+
+USER_ROOT = session.isolate()
+
+import bpy  # noqa: E402,F401 (imported after isolate on purpose)
+import pytest  # noqa: E402
+
+SANDSCAPE = session.install_dev_extension(USER_ROOT)
+
+
+@pytest.fixture(autouse=True)
+def empty_file():
+    session.reset()
+    yield
+
+
+@pytest.fixture
+def sandscape():
+    """The installed extension's package (bl_ext.local.sandscape)."""
+    return SANDSCAPE
