@@ -27,6 +27,7 @@ def test_rerun_updates_instead_of_duplicating(sandscape):
     node = sandscape.node_groups.sand_material.glint_node(plane.active_material)
     assert node.inputs["Threshold"].default_value == pytest.approx(0.5)
     assert node.inputs["Strength"].default_value == pytest.approx(4.0)
+    assert plane.active_material.cycles.emission_sampling == "NONE"  # glints light nothing else
     # Switching source rebuilds our material in place, still one of everything.
     bpy.ops.sandscape.add_sand_material(source="IMAGE", image_resolution=16)
     bpy.ops.sandscape.add_sand_material(source="IMAGE", image_resolution=16, seed=3)
