@@ -36,15 +36,15 @@ def _final(a, b, c):
     return a, b, c
 
 
-def _start(n_words, shape):
-    return np.full(shape, (0xDEADBEEF + (n_words << 2) + 13) & 0xFFFFFFFF, dtype=_U32)
+def _start(*keys):
+    """Keys as broadcast uint32 arrays, and lookup3's initial a = b = c for that many words."""
+    keys = np.broadcast_arrays(*(np.asarray(k, dtype=_U32) for k in keys))
+    start = np.full(keys[0].shape, (0xDEADBEEF + (len(keys) << 2) + 13) & 0xFFFFFFFF, dtype=_U32)
+    return keys, start, start.copy(), start.copy()
 
 
 def hash_uint3(kx, ky, kz):
-    kx, ky, kz = np.broadcast_arrays(*(np.asarray(k, dtype=_U32) for k in (kx, ky, kz)))
-    a = _start(3, kx.shape)
-    b = a.copy()
-    c = a.copy()
+    (kx, ky, kz), a, b, c = _start(kx, ky, kz)
     with np.errstate(over="ignore"):
         c = c + kz
         b = b + ky
@@ -53,10 +53,7 @@ def hash_uint3(kx, ky, kz):
 
 
 def hash_uint4(kx, ky, kz, kw):
-    kx, ky, kz, kw = np.broadcast_arrays(*(np.asarray(k, dtype=_U32) for k in (kx, ky, kz, kw)))
-    a = _start(4, kx.shape)
-    b = a.copy()
-    c = a.copy()
+    (kx, ky, kz, kw), a, b, c = _start(kx, ky, kz, kw)
     with np.errstate(over="ignore"):
         a = a + kx
         b = b + ky

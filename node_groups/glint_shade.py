@@ -12,26 +12,38 @@ VERSION = 1
 TREE_TYPE = "ShaderNodeTree"
 
 
+# Socket name -> (type, description, default, min, max, subtype); shared with glints.py so
+# the two groups describe the same inputs the same way.
+INPUTS = {
+    "Noise": ("NodeSocketFloat", "Per-grain random value in 0..1 (procedural cells or an image)",
+              0.0, 0.0, 1.0, None),
+    "Threshold": ("NodeSocketFloat", "Grains whose noise exceeds this glint: 0 lights all, 1 none; "
+                  "about (1 - threshold) of the grains glint", 0.97, 0.0, 1.0, "FACTOR"),
+    "Facing Power": ("NodeSocketFloat", "Exponent on N·V: higher keeps glints to where the view lines "
+                     "up with the normal; 0 shows them at every angle", 8.0, 0.0, None, None),
+    "Color": ("NodeSocketColor", "Glint colour", (1.0, 0.95, 0.85, 1.0), None, None, None),
+    "Strength": ("NodeSocketFloat", "Emission strength of a fully facing glint", 30.0, 0.0, None, None),
+}
+OUTPUTS = {
+    "Emission": ("NodeSocketShader", "The glints as an emission shader"),
+    "Mask": ("NodeSocketFloat", "Glint coverage 0..1: lit grain × (N·V)^power, without colour or strength"),
+    "Glint Color": ("NodeSocketColor", "Colour × Strength × Mask, for an Emission Color input"),
+}
+
+
+def add_sockets(tree, input_names, inputs=INPUTS):
+    """The named inputs in that order, then every output."""
+    for name in input_names:
+        h.add_input(tree, name, *inputs[name])
+    for name, (socket_type, description) in OUTPUTS.items():
+        h.add_output(tree, name, socket_type, description)
+
+
 def build(tree):
     tree.description = (
         "Glint term of the Sandscape sand: Noise above Threshold lights a grain, "
         "(N·V)^Facing Power keeps it to where the view meets the normal")
-    h.add_input(tree, "Noise", "NodeSocketFloat",
-                "Per-grain random value in 0..1 (procedural cells or an image)", 0.0, 0.0, 1.0)
-    h.add_input(tree, "Threshold", "NodeSocketFloat",
-                "Grains whose noise exceeds this glint: 0 lights all, 1 none; "
-                "about (1 - threshold) of the grains glint", 0.97, 0.0, 1.0, "FACTOR")
-    h.add_input(tree, "Facing Power", "NodeSocketFloat",
-                "Exponent on N·V: higher keeps glints to where the view lines up with the "
-                "normal; 0 shows them at every angle", 8.0, 0.0)
-    h.add_input(tree, "Color", "NodeSocketColor", "Glint colour", (1.0, 0.95, 0.85, 1.0))
-    h.add_input(tree, "Strength", "NodeSocketFloat", "Emission strength of a fully facing glint",
-                30.0, 0.0)
-    h.add_output(tree, "Emission", "NodeSocketShader", "The glints as an emission shader")
-    h.add_output(tree, "Mask", "NodeSocketFloat",
-                 "Glint coverage 0..1: lit grain × (N·V)^power, without colour or strength")
-    h.add_output(tree, "Glint Color", "NodeSocketColor",
-                 "Colour × Strength × Mask, for an Emission Color input")
+    add_sockets(tree, ("Noise", "Threshold", "Facing Power", "Color", "Strength"))
 
     group_in, group_out = h.group_io(tree)
     inputs = group_in.outputs

@@ -13,29 +13,21 @@ VERSION = 1
 TREE_TYPE = "ShaderNodeTree"
 
 
+INPUTS = {
+    **glint_shade.INPUTS,
+    "Glint Size": ("NodeSocketFloat", "Edge of a glint cell in metres of object space "
+                   "(scaling the object scales it)", 0.003, 0.0, None, "DISTANCE"),
+    "Seed": ("NodeSocketFloat", "Another seed gives another random set of glinting cells",
+             0.0, None, None, None),
+}
+
+
 def build(tree):
     tree.description = (
         "Sparkling sand grains: object-space cells of Glint Size metres, a seeded random "
         "value per cell, lit above Threshold and only where the view meets the normal")
-    h.add_input(tree, "Threshold", "NodeSocketFloat",
-                "Cells whose noise exceeds this glint: about (1 - threshold) of the cells glint",
-                0.97, 0.0, 1.0, "FACTOR")
-    h.add_input(tree, "Glint Size", "NodeSocketFloat",
-                "Edge of a glint cell in metres of object space (scaling the object scales it)",
-                0.003, 0.0, None, "DISTANCE")
-    h.add_input(tree, "Facing Power", "NodeSocketFloat",
-                "Exponent on N·V: higher keeps glints to where the view lines up with the "
-                "normal; 0 shows them at every angle", 8.0, 0.0)
-    h.add_input(tree, "Color", "NodeSocketColor", "Glint colour", (1.0, 0.95, 0.85, 1.0))
-    h.add_input(tree, "Strength", "NodeSocketFloat", "Emission strength of a fully facing glint",
-                30.0, 0.0)
-    h.add_input(tree, "Seed", "NodeSocketFloat",
-                "Another seed gives another random set of glinting cells", 0.0)
-    h.add_output(tree, "Emission", "NodeSocketShader", "The glints as an emission shader")
-    h.add_output(tree, "Mask", "NodeSocketFloat",
-                 "Glint coverage 0..1: lit cell × (N·V)^power, without colour or strength")
-    h.add_output(tree, "Glint Color", "NodeSocketColor",
-                 "Colour × Strength × Mask, for an Emission Color input")
+    glint_shade.add_sockets(tree, ("Threshold", "Glint Size", "Facing Power", "Color", "Strength", "Seed"),
+                            INPUTS)
 
     group_in, group_out = h.group_io(tree)
     inputs = group_in.outputs
@@ -58,5 +50,5 @@ def build(tree):
     h.link(tree, noise.outputs["Value"], shade.inputs["Noise"])
     for name in ("Threshold", "Facing Power", "Color", "Strength"):
         h.link(tree, inputs[name], shade.inputs[name])
-    for name in ("Emission", "Mask", "Glint Color"):
+    for name in glint_shade.OUTPUTS:
         h.link(tree, shade.outputs[name], group_out.inputs[name])

@@ -4,7 +4,10 @@ import bpy
 from bpy.props import EnumProperty, FloatProperty, FloatVectorProperty, IntProperty, StringProperty
 
 from ..addon import images
-from ..node_groups import sand_material
+from ..node_groups import glints, sand_material
+
+# The operator mirrors the group's inputs; the group's socket table holds the defaults.
+DEFAULTS = {name: spec[2] for name, spec in glints.INPUTS.items()}
 
 
 class SANDSCAPE_OT_add_sand_material(bpy.types.Operator):
@@ -22,20 +25,21 @@ class SANDSCAPE_OT_add_sand_material(bpy.types.Operator):
         default="PROCEDURAL")
     threshold: FloatProperty(
         name="Threshold", description="How many grains glint: about (1 - threshold) of them",
-        default=0.97, soft_min=0.0, soft_max=1.0, subtype="FACTOR")
+        default=DEFAULTS["Threshold"], soft_min=0.0, soft_max=1.0, subtype="FACTOR")
     glint_size: FloatProperty(
         name="Glint Size", description="Edge of a glint cell in metres of object space",
-        default=0.003, soft_min=1e-5, soft_max=1.0, subtype="DISTANCE", unit="LENGTH", precision=4)
+        default=DEFAULTS["Glint Size"], soft_min=1e-5, soft_max=1.0, subtype="DISTANCE", unit="LENGTH",
+        precision=4)
     facing_power: FloatProperty(
         name="Facing Power",
         description="Exponent on N·V: higher keeps glints to where the view meets the normal",
-        default=8.0, soft_min=0.0, soft_max=256.0)
+        default=DEFAULTS["Facing Power"], soft_min=0.0, soft_max=256.0)
     color: FloatVectorProperty(
         name="Color", description="Glint colour", size=4, subtype="COLOR",
-        default=(1.0, 0.95, 0.85, 1.0), soft_min=0.0, soft_max=1.0)
+        default=DEFAULTS["Color"], soft_min=0.0, soft_max=1.0)
     strength: FloatProperty(
         name="Strength", description="Emission strength of a fully facing glint",
-        default=30.0, soft_min=0.0, soft_max=1000.0)
+        default=DEFAULTS["Strength"], soft_min=0.0, soft_max=1000.0)
     seed: IntProperty(name="Seed", description="Another seed, another set of glinting grains",
                       default=0, min=0, max=2 ** 24)
     image: StringProperty(
