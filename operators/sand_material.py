@@ -6,8 +6,9 @@ from bpy.props import EnumProperty, FloatProperty, FloatVectorProperty, IntPrope
 from ..addon import images
 from ..node_groups import glints, sand_material
 
-# The operator mirrors the group's inputs; the group's socket table holds the defaults.
-DEFAULTS = {name: spec[2] for name, spec in glints.INPUTS.items()}
+# The operator mirrors the group's inputs: name, tooltip and default come from its socket table.
+MIRROR = {name: {"name": name, "description": spec[1], "default": spec[2]}
+          for name, spec in glints.INPUTS.items()}
 
 
 class SANDSCAPE_OT_add_sand_material(bpy.types.Operator):
@@ -23,23 +24,12 @@ class SANDSCAPE_OT_add_sand_material(bpy.types.Operator):
         items=(("PROCEDURAL", "Procedural", "Seeded white noise on object-space cells of Glint Size"),
                ("IMAGE", "Image", "A noise image through the mesh UVs: one texel, one grain")),
         default="PROCEDURAL")
-    threshold: FloatProperty(
-        name="Threshold", description="How many grains glint: about (1 - threshold) of them",
-        default=DEFAULTS["Threshold"], soft_min=0.0, soft_max=1.0, subtype="FACTOR")
-    glint_size: FloatProperty(
-        name="Glint Size", description="Edge of a glint cell in metres of object space",
-        default=DEFAULTS["Glint Size"], soft_min=1e-5, soft_max=1.0, subtype="DISTANCE", unit="LENGTH",
-        precision=4)
-    facing_power: FloatProperty(
-        name="Facing Power",
-        description="Exponent on N·V: higher keeps glints to where the view meets the normal",
-        default=DEFAULTS["Facing Power"], soft_min=0.0, soft_max=256.0)
-    color: FloatVectorProperty(
-        name="Color", description="Glint colour", size=4, subtype="COLOR",
-        default=DEFAULTS["Color"], soft_min=0.0, soft_max=1.0)
-    strength: FloatProperty(
-        name="Strength", description="Emission strength of a fully facing glint",
-        default=DEFAULTS["Strength"], soft_min=0.0, soft_max=1000.0)
+    threshold: FloatProperty(**MIRROR["Threshold"], soft_min=0.0, soft_max=1.0, subtype="FACTOR")
+    glint_size: FloatProperty(**MIRROR["Glint Size"], soft_min=1e-5, soft_max=1.0, subtype="DISTANCE",
+                              unit="LENGTH", precision=4)
+    facing_power: FloatProperty(**MIRROR["Facing Power"], soft_min=0.0, soft_max=256.0)
+    color: FloatVectorProperty(**MIRROR["Color"], size=4, subtype="COLOR", soft_min=0.0, soft_max=1.0)
+    strength: FloatProperty(**MIRROR["Strength"], soft_min=0.0, soft_max=1000.0)
     seed: IntProperty(name="Seed", description="Another seed, another set of glinting grains",
                       default=0, min=0, max=2 ** 24)
     image: StringProperty(

@@ -27,3 +27,9 @@ def empty_file():
 def sandscape():
     """The installed extension's package (bl_ext.local.sandscape)."""
     return SANDSCAPE
+
+
+@pytest.fixture
+def glints_group(sandscape):
+    """The procedural glint group (Sandscape Glints), built or reused the way the add-on does."""
+    return sandscape.node_groups.helper.ensure_group(sandscape.node_groups.glints)

@@ -44,8 +44,7 @@ def plane():
     return readback.uv_plane(PLANE)
 
 
-def bake_group_output(sandscape, obj, values, output):
-    group = sandscape.node_groups.helper.ensure_group(sandscape.node_groups.glints)
+def bake_group_output(group, obj, values, output):
     material = scenes.group_material(group, values, output)
     obj.data.materials.clear()
     obj.data.materials.append(material)
@@ -53,9 +52,9 @@ def bake_group_output(sandscape, obj, values, output):
 
 
 @pytest.mark.parametrize("threshold,size,power,seed,strength", PARAMETER_SETS)
-def test_mask_bake_equals_twin(sandscape, plane, threshold, size, power, seed, strength):
+def test_mask_bake_equals_twin(glints_group, plane, threshold, size, power, seed, strength):
     values = glint_values(threshold, size, power, seed, strength)
-    baked = bake_group_output(sandscape, plane, values, "Mask")[..., 0]
+    baked = bake_group_output(glints_group, plane, values, "Mask")[..., 0]
     expected, _ = twin.glints(plane_positions(), 1.0, threshold, size, power, (1, 1, 1), strength, seed)
     assert np.abs(baked - expected).max() <= BAKE_TOLERANCE
     if threshold == 0.0:
@@ -64,18 +63,18 @@ def test_mask_bake_equals_twin(sandscape, plane, threshold, size, power, seed, s
         assert expected.max() == 0.0
 
 
-def test_glint_color_bake_equals_twin(sandscape, plane):
+def test_glint_color_bake_equals_twin(glints_group, plane):
     values = glint_values(0.6, 1 / 32, 4.0, 9, 7.0, color=(1.0, 0.5, 0.25, 1.0))
-    baked = bake_group_output(sandscape, plane, values, "Glint Color")[..., :3]
+    baked = bake_group_output(glints_group, plane, values, "Glint Color")[..., :3]
     _, expected = twin.glints(plane_positions(), 1.0, 0.6, 1 / 32, 4.0, (1.0, 0.5, 0.25), 7.0, 9)
     assert np.abs(baked - expected).max() <= BAKE_TOLERANCE * 7.0
     assert 0.2 < (expected[..., 0] > 0).mean() < 0.6  # the comparison covered lit and unlit cells
 
 
-def test_unaligned_size_matches_away_from_cell_edges(sandscape, plane):
+def test_unaligned_size_matches_away_from_cell_edges(glints_group, plane):
     """A size in real units (3 mm); bake points closer than 1e-5 cell to an edge are left out."""
     size = 0.003 * 5  # 1.5 cm: about one cell per pixel at this bake resolution
-    baked = bake_group_output(sandscape, plane, glint_values(0.5, size, 1.0, 2, 1.0), "Mask")[..., 0]
+    baked = bake_group_output(glints_group, plane, glint_values(0.5, size, 1.0, 2, 1.0), "Mask")[..., 0]
     positions = plane_positions()
     expected, _ = twin.glints(positions, 1.0, 0.5, size, 1.0, (1, 1, 1), 1.0, 2)
     frac = positions[..., :2] / np.float32(size) + 0.5
@@ -94,10 +93,10 @@ def test_operator_material_emits_the_twin_glints(sandscape, plane):
     assert np.abs(baked - expected).max() <= BAKE_TOLERANCE * 12.0
 
 
-def test_glints_follow_the_object_not_the_world(sandscape, plane):
+def test_glints_follow_the_object_not_the_world(glints_group, plane):
     """Object-space cells: moving and turning the object leaves its glints where they were on it."""
     values = glint_values(0.5, 1 / 16, 1.0, 1, 1.0)
-    still = bake_group_output(sandscape, plane, values, "Mask")[..., 0]
+    still = bake_group_output(glints_group, plane, values, "Mask")[..., 0]
     plane.location = (3.2, -1.7, 0.4)
     plane.rotation_euler = (0.3, 0.2, 1.1)
     moved = readback.bake_emit(plane, plane.active_material, RES)[..., 0]

@@ -23,10 +23,9 @@ def sphere_hits(res=RES):
     return np.stack([x, y, z], axis=-1), z / RADIUS
 
 
-def render_sphere(sandscape, values):
+def render_sphere(group, values):
     readback.cycles_scene(resolution=(RES, RES), samples=1)
     scenes.sharp_pixels()
-    group = sandscape.node_groups.helper.ensure_group(sandscape.node_groups.glints)
     material = scenes.group_material(group, values, output="Emission")
     scenes.analytic_sphere(material, RADIUS)
     scenes.camera("ORTHO", location=(0.0, 0.0, 10.0), ortho_scale=SCALE)
@@ -42,10 +41,10 @@ def comparable_pixels(positions, n_dot_v):
 
 
 @pytest.mark.parametrize("power", [0.0, 1.0, 4.0, 32.0])
-def test_rendered_glint_matches_twin(sandscape, power):
+def test_rendered_glint_matches_twin(glints_group, power):
     values = {"Threshold": 0.4, "Glint Size": SIZE, "Facing Power": power,
               "Color": (*COLOR, 1.0), "Strength": 2.0, "Seed": 3.0}
-    rendered = render_sphere(sandscape, values)
+    rendered = render_sphere(glints_group, values)
     positions, n_dot_v = sphere_hits()
     _, expected = twin.glints(positions.astype(np.float32), n_dot_v, 0.4, SIZE, power, COLOR, 2.0, 3)
     keep = comparable_pixels(positions, n_dot_v)
@@ -59,11 +58,11 @@ def test_rendered_glint_matches_twin(sandscape, power):
     assert np.all(rendered[background] == 0.0)
 
 
-def test_facing_power_falls_off_towards_the_rim(sandscape):
+def test_facing_power_falls_off_towards_the_rim(glints_group):
     """The mission's rule: glints only where the view lines up with the normal."""
     values = {"Threshold": 0.0, "Glint Size": SIZE, "Facing Power": 8.0,
               "Color": (1.0, 1.0, 1.0, 1.0), "Strength": 1.0, "Seed": 0.0}
-    rendered = render_sphere(sandscape, values)[..., 0]
+    rendered = render_sphere(glints_group, values)[..., 0]
     _, n_dot_v = sphere_hits()
     centre = rendered[n_dot_v > 0.98].mean()
     rim = rendered[(n_dot_v > 0.2) & (n_dot_v < 0.5)].mean()

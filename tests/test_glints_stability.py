@@ -68,9 +68,8 @@ def kept_fraction(material):
     return b[row, col][settled].mean()
 
 
-def test_object_space_glints_stay_on_the_surface(sandscape):
-    group = sandscape.node_groups.helper.ensure_group(sandscape.node_groups.glints)
-    material = scenes.group_material(group, {"Threshold": 0.7, "Glint Size": 0.15,
+def test_object_space_glints_stay_on_the_surface(glints_group):
+    material = scenes.group_material(glints_group, {"Threshold": 0.7, "Glint Size": 0.15,
                                              "Facing Power": 0.0, "Seed": 5.0}, "Mask")
     kept = kept_fraction(material)
     print(f"object-space glints kept after the camera move: {kept:.1%}")

@@ -12,9 +12,8 @@ from devtools import readback, scenes
 PLANE = 2.0
 
 
-def bake_mask(sandscape, threshold, size, res, seed=0):
+def bake_mask(group, threshold, size, res, seed=0):
     obj = readback.uv_plane(PLANE)
-    group = sandscape.node_groups.helper.ensure_group(sandscape.node_groups.glints)
     material = scenes.group_material(group, {"Threshold": threshold, "Glint Size": size,
                                              "Facing Power": 0.0, "Seed": float(seed)}, "Mask")
     obj.data.materials.append(material)
@@ -50,22 +49,22 @@ def test_component_areas_counts_regions():
 
 
 @pytest.mark.parametrize("threshold", [0.1, 0.5, 0.9, 0.99])
-def test_lit_cell_fraction_is_one_minus_threshold(sandscape, threshold):
+def test_lit_cell_fraction_is_one_minus_threshold(glints_group, threshold):
     """256² bake, cells of 2 px: one pixel per cell gives 16384 independent cells."""
     res, size = 256, PLANE / 128
-    per_cell = bake_mask(sandscape, threshold, size, res)[1::2, 1::2]
+    per_cell = bake_mask(glints_group, threshold, size, res)[1::2, 1::2]
     p = 1.0 - threshold
     sigma = math.sqrt(p * (1 - p) / per_cell.size)
     assert abs(per_cell.mean() - p) <= 3 * sigma
 
 
-def test_mean_glint_area_scales_with_size_squared(sandscape):
+def test_mean_glint_area_scales_with_size_squared(glints_group):
     """Sizes of 2, 4 and 8 px on a 512² bake: mean glint area / size² stays the same."""
     res = 512
     pixel = PLANE / res
     normalised = []
     for cells in (2, 4, 8):
-        areas = component_areas(bake_mask(sandscape, 0.9, cells * pixel, res, seed=cells))
+        areas = component_areas(bake_mask(glints_group, 0.9, cells * pixel, res, seed=cells))
         assert len(areas) > 300
         normalised.append(areas.mean() / cells**2)
     # Scale-free: each is near 1 cell per glint (plus the odd touching neighbour).

@@ -40,11 +40,10 @@ def test_extreme_settings_render_finite(sandscape, props):
 
 
 @pytest.mark.parametrize("output", ["Mask", "Glint Color"])
-def test_group_outputs_finite_even_with_a_linked_negative_power(sandscape, output):
+def test_group_outputs_finite_even_with_a_linked_negative_power(glints_group, output):
     """Sockets clamp typed values but not linked ones: the group clamps the power itself."""
     readback.cycles_scene(resolution=(32, 32), samples=1)
-    group = sandscape.node_groups.helper.ensure_group(sandscape.node_groups.glints)
-    material = scenes.group_material(group, {"Threshold": 0.0, "Strength": 1e6}, output)
+    material = scenes.group_material(glints_group, {"Threshold": 0.0, "Strength": 1e6}, output)
     node = next(n for n in material.node_tree.nodes if n.bl_idname == "ShaderNodeGroup")
     negative = material.node_tree.nodes.new("ShaderNodeValue")
     negative.outputs[0].default_value = -5.0

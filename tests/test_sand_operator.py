@@ -8,10 +8,6 @@ import pytest
 
 from devtools import readback
 
-OP_DEFAULTS = {"source": "PROCEDURAL", "threshold": 0.97, "glint_size": 0.003, "facing_power": 8.0,
-               "color": (1.0, 0.95, 0.85, 1.0), "strength": 30.0, "seed": 0, "image": "",
-               "image_resolution": 1024}
-
 
 def ours(datablocks, key):
     return [d for d in datablocks if d.get(key)]
@@ -110,7 +106,10 @@ def test_bad_input_is_refused_and_changes_nothing(sandscape, case, props, messag
     # The operator itself returns CANCELLED (bpy.ops turns the ERROR report into the exception).
     cls = bpy.types.SANDSCAPE_OT_add_sand_material
     reports = []
-    fake = types.SimpleNamespace(**{**OP_DEFAULTS, **props},
+    rna = bpy.ops.sandscape.add_sand_material.get_rna_type().properties
+    defaults = {p.identifier: tuple(p.default_array) if getattr(p, "is_array", False) else p.default
+                for p in rna if p.identifier != "rna_type"}
+    fake = types.SimpleNamespace(**{**defaults, **props},
                                  report=lambda kind, text: reports.append((kind, text)))
     fake._problem = types.MethodType(cls._problem, fake)
     assert cls.execute(fake, bpy.context) == {"CANCELLED"}
