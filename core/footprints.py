@@ -1,0 +1,249 @@
+"""Footprint painter in plain numpy: prints in, a float RGBA height image out.
+
+Channels (the numpy twin of what node group "Sandscape Footprint Height" reads):
+  R  depression, 0..depth scale: the sole pressed into the sand (1 = the set depth)
+  G  raised rim, 0..depth scale: sand pushed up in a ring around the sole (1 = the set rim)
+  B  birth frame of the print that owns the texel, normalised to the frame range (0..1)
+  A  sole coverage, 0..1: where any sole pressed the sand (the owner test uses it)
+
+A print is a sole outline (heel circle, toe circle, tangent lines between them: an uneven
+capsule) with a flat bottom, a smooth falloff at the edge and a rim bump outside it.
+Edges are never narrower than about a texel, so the image carries no aliasing steps.
+
+Composition, per texel, in birth order (it is associative, so prints go in chunks):
+  R = max of the prints' depressions          never deeper than the deepest print
+  G = max_i rim_i * prod_{j later} (1 - s_j)  a later sole flattens an earlier rim
+  B = birth of the latest print whose sole covers the texel; failing that, of the latest
+      print whose surviving rim reaches it.
+
+Work is vectorised over texel windows of whole batches of prints: no Python loop per texel
+or per print.
+"""
+
+import numpy as np
+
+F32 = np.float32
+LOG_FLOOR = -69.0  # log(1e-30): a fully pressed texel keeps no rim, without log(0)
+CHUNK_ENTRIES = 1 << 22  # texel-print pairs per batch: bounds memory at any print count
+
+
+class Sole:
+    """Sole shape and profile, in metres. Immutable; `reach` bounds a stamp's influence."""
+
+    __slots__ = ("length", "width", "heel_ratio", "edge", "rim_width")
+
+    def __init__(self, length=0.27, width=0.10, heel_ratio=0.75, edge=0.012, rim_width=0.04):
+        if not (length > 0 and width > 0 and rim_width >= 0 and edge >= 0):
+            raise ValueError("sole length and width must be > 0, edge and rim width >= 0")
+        if width > length:
+            raise ValueError("sole width must not exceed its length")
+        if not 0 < heel_ratio <= 1:
+            raise ValueError("heel ratio must lie in (0, 1]")
+        self.length, self.width, self.heel_ratio = float(length), float(width), float(heel_ratio)
+        self.edge, self.rim_width = float(edge), float(rim_width)
+
+    def toe_radius(self):
+        return self.width / 2
+
+    def heel_radius(self):
+        return self.heel_ratio * self.width / 2
+
+    def edge_width(self, texel):
+        return max(self.edge, texel)
+
+    def rim_band(self, texel):
+        return max(self.rim_width, 2.0 * texel) if self.rim_width > 0 else 0.0
+
+    def reach(self, texel=0.0):
+        """Distance from the print centre beyond which the stamp is exactly zero."""
+        return self.length / 2 + self.rim_band(texel)
+
+
+def sole_distance(a, b, sole):
+    """Signed distance to the sole outline (negative inside); a forward, b lateral, metres.
+
+    The outline is an uneven capsule from the heel circle (radius r1, centre at
+    a = -L/2 + r1) to the toe circle (r2, at a = L/2 - r2), centred on a = 0.
+    """
+    r1, r2 = sole.heel_radius(), sole.toe_radius()
+    heel = -sole.length / 2 + r1
+    h = sole.length / 2 - r2 - heel
+    px = np.abs(b)
+    py = a - heel
+    if h <= 1e-12:  # a round sole
+        return np.hypot(px, py) - max(r1, r2)
+    slope = (r1 - r2) / h
+    along = np.sqrt(max(1.0 - slope * slope, 0.0))
+    k = -slope * px + along * py
+    return np.where(k < 0, np.hypot(px, py) - r1,
+                    np.where(k > along * h, np.hypot(px, py - h) - r2, along * px + slope * py - r1))
+
+
+def smoothstep(edge0, edge1, x):
+    t = np.clip((x - edge0) / (edge1 - edge0), 0.0, 1.0) if edge1 > edge0 else (x >= edge1) * 1.0
+    return t * t * (3.0 - 2.0 * t)
+
+
+def sole_profile(distance, sole, texel):
+    """Pressed fraction s (0 outside, 1 on the flat bottom) and rim bump (0..1, peak 1)."""
+    pressed = smoothstep(0.0, sole.edge_width(texel), -distance)
+    band = sole.rim_band(texel)
+    if band <= 0:
+        return pressed, np.zeros_like(pressed)
+    t = distance / band
+    rim = np.where((t > 0) & (t < 1), (4.0 * t * (1.0 - t)) ** 2, 0.0)
+    return pressed, rim
+
+
+class Region:
+    """The image's footprint in the painting plane: origin (x0, y0), square texels, size."""
+
+    __slots__ = ("x0", "y0", "texel", "width", "height")
+
+    def __init__(self, x0, y0, texel, width, height):
+        self.x0, self.y0, self.texel = float(x0), float(y0), float(texel)
+        self.width, self.height = int(width), int(height)
+
+    def extent(self):
+        return self.width * self.texel, self.height * self.texel
+
+    def texel_centre(self, i, j):
+        """Painting-plane coordinates of texel column i, row j (row 0 at y0)."""
+        return self.x0 + (i + 0.5) * self.texel, self.y0 + (j + 0.5) * self.texel
+
+
+def fit_region(centres, reach, resolution, margin=0.0):
+    """The smallest texel grid over the prints' bounding box plus reach and margin.
+
+    The longer side gets `resolution` texels; texels are square, so the short side gets
+    proportionally fewer (at least 1). Texels are spent only where prints are.
+    """
+    centres = np.asarray(centres, dtype=np.float64).reshape(-1, 2)
+    if len(centres) == 0:
+        raise ValueError("no prints to fit a region around")
+    if int(resolution) < 1:
+        raise ValueError("resolution must be at least 1")
+    pad = reach + margin
+    low = centres.min(axis=0) - pad
+    high = centres.max(axis=0) + pad
+    span = np.maximum(high - low, 1e-6)
+    texel = span.max() / int(resolution)
+    size = np.maximum(np.ceil(span / texel - 1e-9), 1).astype(int)
+    # Centre the grid on the box so rounding spreads evenly on both sides.
+    origin = (low + high) / 2 - size * texel / 2
+    return Region(origin[0], origin[1], texel, size[0], size[1])
+
+
+def _prepare(centres, forward, lateral, births, depth_scales, frame_range):
+    centres = np.asarray(centres, dtype=np.float64).reshape(-1, 2)
+    n = len(centres)
+    forward = np.asarray(forward, dtype=np.float64).reshape(n, 2)
+    lateral = np.asarray(lateral, dtype=np.float64).reshape(n, 2)
+    births = np.broadcast_to(np.asarray(births, dtype=np.float64), (n,))
+    scales = np.broadcast_to(np.asarray(depth_scales, dtype=np.float64), (n,))
+    start, end = frame_range
+    span = end - start if end > start else 1.0
+    birth_unit = np.clip((births - start) / span, 0.0, 1.0)
+    # Sole coordinates (a, b) of a plane offset d solve [forward lateral] (a, b) = d.
+    det = forward[:, 0] * lateral[:, 1] - forward[:, 1] * lateral[:, 0]
+    finite = np.isfinite(centres).all(1) & np.isfinite(det) & np.isfinite(scales) & np.isfinite(birth_unit)
+    usable = finite & (np.abs(det) > 1e-6) & (scales > 0)
+    order = np.argsort(births, kind="stable")
+    order = order[usable[order]]
+    inverse = np.stack([lateral[:, 1], -lateral[:, 0], -forward[:, 1], forward[:, 0]], axis=1)
+    inverse /= np.where(usable, det, 1.0)[:, None]
+    return centres, inverse, birth_unit, scales, order
+
+
+def paint(centres, forward, lateral, births, depth_scales, region, sole=None, frame_range=(0.0, 1.0),
+          out=None):
+    """Stamp prints into a (height, width, 4) float32 image; returns it (rows from y0 up).
+
+    centres (N, 2): print centres in the painting plane (the terrain's local XY).
+    forward, lateral (N, 2): the print's unit forward and lateral axes projected onto the
+        plane (on flat ground, (cos h, sin h) and (-sin h, cos h); on a slope, shorter).
+    births (N,): frames; depth_scales (N,): per-print multipliers of depth and rim (> 0).
+    Prints with a non-finite value, a zero scale or a degenerate frame are skipped.
+    """
+    sole = sole or Sole()
+    texel = region.texel
+    if out is None:
+        out = np.zeros((region.height, region.width, 4), dtype=F32)
+    centres, inverse, birth_unit, scales, order = _prepare(centres, forward, lateral, births,
+                                                           depth_scales, frame_range)
+    reach = sole.reach(texel)
+    window = int(np.ceil(2 * reach / texel)) + 2
+    per_chunk = max(1, CHUNK_ENTRIES // (window * window))
+    flat = out.reshape(-1, 4)
+    for begin in range(0, len(order), per_chunk):
+        _stamp_chunk(flat, region, sole, window, reach, order[begin:begin + per_chunk],
+                     centres, inverse, birth_unit, scales)
+    return out
+
+
+def _stamp_chunk(flat, region, sole, window, reach, prints, centres, inverse, birth_unit, scales):
+    texel = region.texel
+    c = centres[prints]
+    first = np.floor((c - (region.x0, region.y0) - reach) / texel).astype(np.int64)
+    steps = np.arange(window)
+    col = first[:, 0, None, None] + steps[None, None, :]
+    row = first[:, 1, None, None] + steps[None, :, None]
+    col, row = np.broadcast_arrays(col, row)
+    dx = region.x0 + (col + 0.5) * texel - c[:, 0, None, None]
+    dy = region.y0 + (row + 0.5) * texel - c[:, 1, None, None]
+    m = inverse[prints][:, :, None, None]
+    a = m[:, 0] * dx + m[:, 1] * dy
+    b = m[:, 2] * dx + m[:, 3] * dy
+    pressed, rim = sole_profile(sole_distance(a, b, sole), sole, texel)
+    inside = ((col >= 0) & (col < region.width) & (row >= 0) & (row < region.height)
+              & ((pressed > 0) | (rim > 0)))
+    rank = np.broadcast_to(np.arange(len(prints))[:, None, None], inside.shape)[inside]
+    pixel = (row * region.width + col)[inside]
+    pressed, rim = pressed[inside], rim[inside]
+    if pixel.size == 0:
+        return
+    scale = scales[prints][rank]
+    birth = birth_unit[prints][rank]
+    # Group by texel, in birth order within each texel (prints arrive sorted by birth).
+    sort = np.argsort(pixel * len(prints) + rank, kind="stable")
+    pixel, pressed, rim, scale, birth = pixel[sort], pressed[sort], rim[sort], scale[sort], birth[sort]
+    starts = np.flatnonzero(np.concatenate(([True], pixel[1:] != pixel[:-1])))
+    ends = np.append(starts[1:], pixel.size)
+    texels = pixel[starts]
+
+    keep = np.maximum(np.log(np.maximum(1.0 - pressed, 1e-300)), LOG_FLOOR)
+    # Sum of log(1 - s_j) over the later prints of the same texel: a suffix sum per group.
+    suffix = np.concatenate((np.cumsum(keep[::-1])[::-1], [0.0]))
+    group_end = np.repeat(ends, ends - starts)
+    later = suffix[np.arange(pixel.size) + 1] - suffix[group_end]
+    surviving = rim * scale * np.exp(later)
+    depth = pressed * scale
+
+    chunk_depth = np.maximum.reduceat(depth, starts)
+    chunk_rim = np.maximum.reduceat(surviving, starts)
+    chunk_keep = np.exp(suffix[starts] - suffix[ends])
+    chunk_cover = np.maximum.reduceat(pressed, starts)
+    sole_birth = np.maximum.reduceat(np.where(pressed > 0, birth, -1.0), starts)
+    rim_birth = np.maximum.reduceat(np.where(surviving > 1e-7, birth, -1.0), starts)
+
+    old = flat[texels].astype(np.float64)
+    new = np.empty_like(old)
+    new[:, 0] = np.maximum(old[:, 0], chunk_depth)
+    new[:, 1] = np.maximum(old[:, 1] * chunk_keep, chunk_rim)
+    owned_by_rim = (old[:, 3] <= 0) & (rim_birth >= 0)
+    new[:, 2] = np.where(sole_birth >= 0, sole_birth, np.where(owned_by_rim, rim_birth, old[:, 2]))
+    new[:, 3] = np.maximum(old[:, 3], chunk_cover)
+    flat[texels] = new
+
+
+def height(image, depth, rim):
+    """Height in metres from a painted image with every print revealed: rim G - depth R."""
+    return rim * image[..., 1].astype(np.float64) - depth * image[..., 0].astype(np.float64)
+
+
+def revealed_height(image, depth, rim, frame, frame_range):
+    """The twin of the node group: only texels whose owner is born by `frame` are lowered."""
+    start, end = frame_range
+    span = end - start if end > start else 1.0
+    born = image[..., 2].astype(np.float64) * span + start <= frame + 1e-4
+    return np.where(born, height(image, depth, rim), 0.0)
