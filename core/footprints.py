@@ -216,7 +216,7 @@ def _stamp_chunk(flat, region, sole, window, reach, prints, centres, inverse, bi
     suffix = np.concatenate((np.cumsum(keep[::-1])[::-1], [0.0]))
     group_end = np.repeat(ends, ends - starts)
     later = suffix[np.arange(pixel.size) + 1] - suffix[group_end]
-    surviving = rim * scale * np.exp(later)
+    surviving = _flush(rim * scale * np.exp(later))
     depth = pressed * scale
 
     chunk_depth = np.maximum.reduceat(depth, starts)
@@ -229,11 +229,16 @@ def _stamp_chunk(flat, region, sole, window, reach, prints, centres, inverse, bi
     old = flat[texels].astype(np.float64)
     new = np.empty_like(old)
     new[:, 0] = np.maximum(old[:, 0], chunk_depth)
-    new[:, 1] = np.maximum(old[:, 1] * chunk_keep, chunk_rim)
+    new[:, 1] = np.maximum(_flush(old[:, 1] * chunk_keep), chunk_rim)
     owned_by_rim = (old[:, 3] <= 0) & (rim_birth >= 0)
     new[:, 2] = np.where(sole_birth >= 0, sole_birth, np.where(owned_by_rim, rim_birth, old[:, 2]))
     new[:, 3] = np.maximum(old[:, 3], chunk_cover)
     flat[texels] = new
+
+
+def _flush(values):
+    # What LOG_FLOOR leaves of a flattened rim (1e-30) is zero, not a denormal speck.
+    return np.where(values < 1e-12, 0.0, values)
 
 
 def height(image, depth, rim):

@@ -33,12 +33,14 @@ def _unit(vectors, fallback=None):
 
 
 def horizontal_tangents(positions):
-    """Unit horizontal tangent at each sample (central differences; one-sided at the ends).
+    """Unit horizontal tangent at each sample (second-order differences).
 
     Samples where the walker moves only vertically borrow the nearest valid tangent.
     """
     positions = np.asarray(positions, dtype=np.float64)
-    tangent = np.gradient(positions, axis=0)
+    # Second-order differences at the ends too: a first-order end tangent is off by half a
+    # frame's turn (0.4 deg on a 5 m circle at 24 fps).
+    tangent = np.gradient(positions, axis=0, edge_order=2 if len(positions) > 2 else 1)
     tangent[:, 2] = 0.0
     tangent = _unit(tangent)
     valid = np.flatnonzero(np.linalg.norm(tangent, axis=1) > 0.5)

@@ -1,0 +1,202 @@
+"""The numpy painter against analytic expectations for a straight walk on flat ground.
+
+Expected contact points come from the walk's formula (x = k * stride, y = +-stance / 2),
+not from the planner; centres are measured on the painted image as depth-weighted
+centroids (a heel ratio of 1 makes the sole symmetric about its centre).
+"""
+
+import numpy as np
+import pytest
+
+from core import footprints as fp
+from core import paths
+
+STRIDE, STANCE = 0.7, 0.2
+TEXEL = 0.005  # metres; the rim peak of a round-ended sole lands on a texel centre
+DEPTH, RIM = 0.03, 0.008  # the group's sockets: metres per unit of R and of G
+TOLERANCE = 1e-4
+
+
+def straight_walk(steps=8, frames_per_metre=24.0):
+    length = STRIDE * (steps - 1)
+    frames = np.arange(int(length * frames_per_metre) + 3, dtype=float)  # a little past the last step
+    positions = np.stack([frames / frames_per_metre, np.zeros_like(frames), np.zeros_like(frames)], 1)
+    return paths.plan_steps(positions, frames, STRIDE, STANCE), frames
+
+
+def flat_axes(forward):
+    f = forward[:, :2]
+    return f, np.stack([-f[:, 1], f[:, 0]], axis=1)
+
+
+def aligned_region(centres, sole):
+    """A region whose texel centres fall on every print centre (multiples of TEXEL)."""
+    pad = sole.reach(TEXEL) + 10 * TEXEL
+    low = np.floor((centres.min(0) - pad) / TEXEL) * TEXEL - TEXEL / 2
+    high = centres.max(0) + pad
+    size = np.ceil((high - low) / TEXEL).astype(int)
+    return fp.Region(low[0], low[1], TEXEL, size[0], size[1])
+
+
+def texel_of(region, point):
+    return (int(np.floor((point[1] - region.y0) / region.texel)),
+            int(np.floor((point[0] - region.x0) / region.texel)))
+
+
+@pytest.fixture
+def painted():
+    sole = fp.Sole(heel_ratio=1.0)
+    steps, frames = straight_walk()
+    forward, lateral = flat_axes(steps["forward"])
+    centres = steps["contact"][:, :2]
+    region = aligned_region(centres, sole)
+    image = fp.paint(centres, forward, lateral, steps["birth"], 1.0, region, sole, (0, frames[-1]))
+    return sole, steps, region, image, frames
+
+
+def test_planner_matches_the_walk_formula():
+    steps, frames = straight_walk()
+    k = np.arange(8)
+    expected = np.stack([k * STRIDE, np.where(k % 2 == 0, STANCE / 2, -STANCE / 2), 0 * k], 1)
+    np.testing.assert_allclose(steps["contact"], expected, atol=1e-12)
+    np.testing.assert_allclose(steps["birth"], k * STRIDE * 24.0, atol=1e-9)
+    np.testing.assert_allclose(steps["heading"], 0.0, atol=1e-12)
+    assert list(steps["side"]) == [1, -1] * 4
+
+
+def test_print_centres_within_half_a_texel(painted):
+    sole, steps, region, image, _ = painted
+    depth = image[..., 0].astype(np.float64)
+    rows, cols = np.indices(depth.shape)
+    x = region.x0 + (cols + 0.5) * TEXEL
+    y = region.y0 + (rows + 0.5) * TEXEL
+    k = np.arange(8)
+    expected = np.stack([k * STRIDE, np.where(k % 2 == 0, STANCE / 2, -STANCE / 2)], 1)
+    for centre in expected:
+        near = (np.hypot(x - centre[0], y - centre[1]) < sole.reach(TEXEL)) & (depth > 0)
+        weight = depth[near]
+        measured = np.array([(x[near] * weight).sum(), (y[near] * weight).sum()]) / weight.sum()
+        assert np.abs(measured - centre).max() < 0.5 * TEXEL
+
+
+def test_depth_and_rim_at_their_analytic_places(painted):
+    sole, steps, region, image, _ = painted
+    for centre, side in zip(steps["contact"][:, :2], steps["side"], strict=True):
+        row, col = texel_of(region, centre)
+        assert abs(DEPTH * image[row, col, 0] - DEPTH) < TOLERANCE
+        assert image[row, col, 1] == 0.0
+        # Rim peak: half a rim band outside the straight edge, on the side away from the path.
+        offset = sole.width / 2 + sole.rim_band(TEXEL) / 2
+        row, col = texel_of(region, centre + (0.0, side * offset))
+        assert abs(RIM * image[row, col, 1] - RIM) < TOLERANCE
+    assert image[..., 0].max() <= 1.0 and image[..., 1].max() <= 1.0
+
+
+def test_zero_outside_the_stamp_radius(painted):
+    sole, steps, region, image, _ = painted
+    rows, cols = np.indices(image.shape[:2])
+    x = region.x0 + (cols + 0.5) * TEXEL
+    y = region.y0 + (rows + 0.5) * TEXEL
+    nearest = np.min([np.hypot(x - cx, y - cy) for cx, cy in steps["contact"][:, :2]], axis=0)
+    outside = nearest > sole.reach(TEXEL)
+    assert outside.any() and not image[outside].any()
+    assert (image[nearest < sole.width / 2 - sole.edge, 0] == 1.0).all()  # the flat bottom
+
+
+def test_birth_channel_reveals_each_print_when_the_walker_passes(painted):
+    _, steps, region, image, frames = painted
+    for centre, birth in zip(steps["contact"][:, :2], steps["birth"], strict=True):
+        row, col = texel_of(region, centre)
+        assert abs(image[row, col, 2] * frames[-1] - birth) < 1e-3
+        before = fp.revealed_height(image, DEPTH, RIM, birth - 1, (0, frames[-1]))
+        after = fp.revealed_height(image, DEPTH, RIM, birth, (0, frames[-1]))
+        assert before[row, col] == 0.0 and abs(after[row, col] + DEPTH) < TOLERANCE
+
+
+def test_toe_is_wider_than_heel_and_points_forward():
+    sole = fp.Sole()  # heel ratio 0.75
+    region = fp.Region(-0.25, -0.25, TEXEL, 100, 100)
+    for heading in (0.0, 2.0):
+        f = np.array([[np.cos(heading), np.sin(heading)]])
+        image = fp.paint([[0.0, 0.0]], f, [[-f[0, 1], f[0, 0]]], [0.0], 1.0, region, sole)
+        rows, cols = np.indices(image.shape[:2])
+        along = ((region.x0 + (cols + 0.5) * TEXEL) * f[0, 0] + (region.y0 + (rows + 0.5) * TEXEL) * f[0, 1])
+        pressed = image[..., 3] > 0.5
+        assert pressed[along > 0.05].sum() > 1.2 * pressed[along < -0.05].sum()
+
+
+def test_a_later_sole_flattens_an_earlier_rim_and_depth_stays_bounded():
+    sole = fp.Sole(heel_ratio=1.0)
+    region = fp.Region(-0.4, -0.4, TEXEL, 160, 160)
+    forward, lateral = np.array([[1.0, 0.0]] * 2), np.array([[0.0, 1.0]] * 2)
+    centres = np.array([[0.0, 0.0], [0.0, 0.08]])  # the second sole lies over the first's rim
+    rim_point = texel_of(region, (0.0, sole.width / 2 + sole.rim_band(TEXEL) / 2))
+    later_second = fp.paint(centres, forward, lateral, [0.0, 1.0], 1.0, region, sole)
+    later_first = fp.paint(centres, forward, lateral, [1.0, 0.0], 1.0, region, sole)
+    assert later_second[rim_point][1] == 0.0  # flattened by the later sole
+    assert later_first[rim_point][1] > 0.5  # the earlier sole does not flatten a later rim
+    assert later_second[..., 0].max() <= 1.0
+
+
+def test_batches_compose_like_one_pass(monkeypatch):
+    steps, frames = straight_walk(steps=40)
+    # A stride shorter than the foot overlaps prints; the walk back crosses them again.
+    forward, lateral = flat_axes(steps["forward"])
+    centres = steps["contact"][:, :2] * (0.2, 1.0)
+    births = steps["birth"]
+    region = fp.fit_region(centres, fp.Sole().reach(), 400, 0.05)
+    whole = fp.paint(centres, forward, lateral, births, 1.0, region)
+    monkeypatch.setattr(fp, "CHUNK_ENTRIES", 500)
+    batched = fp.paint(centres, forward, lateral, births, 1.0, region)
+    np.testing.assert_allclose(batched, whole, atol=1e-6)
+
+
+def test_a_hundred_prints_on_one_spot_stay_bounded():
+    rng = np.random.default_rng(1)
+    n = 100
+    angle = rng.uniform(0, 2 * np.pi, n)
+    forward = np.stack([np.cos(angle), np.sin(angle)], 1)
+    lateral = np.stack([-forward[:, 1], forward[:, 0]], 1)
+    scales = rng.uniform(0.5, 1.5, n)
+    region = fp.Region(-0.5, -0.5, TEXEL, 200, 200)
+    image = fp.paint(rng.normal(0, 0.02, (n, 2)), forward, lateral, rng.uniform(0, 10, n), scales,
+                     region, frame_range=(0, 10))
+    assert np.isfinite(image).all()
+    assert image[..., 0].max() <= scales.max() + 1e-6 and image[..., 1].max() <= scales.max() + 1e-6
+    assert 0.0 <= image[..., 2].min() and image[..., 2].max() <= 1.0
+
+
+def test_bad_prints_are_skipped_not_painted():
+    region = fp.Region(-0.5, -0.5, TEXEL, 200, 200)
+    centres = [[0.0, 0.0], [np.nan, 0.0], [0.1, 0.0], [0.2, np.inf]]
+    forward = [[1.0, 0.0], [1.0, 0.0], [0.0, 0.0], [1.0, 0.0]]  # print 3 has a degenerate frame
+    lateral = [[0.0, 1.0]] * 4
+    image = fp.paint(centres, forward, lateral, [0, 1, 2, 3], [1.0, 1.0, 1.0, 1.0], region)
+    assert np.isfinite(image).all() and image[..., 0].max() == 1.0
+
+
+@pytest.mark.parametrize("resolution", [1, 2, 7])
+def test_tiny_resolutions(resolution):
+    steps, frames = straight_walk()
+    forward, lateral = flat_axes(steps["forward"])
+    region = fp.fit_region(steps["contact"][:, :2], fp.Sole().reach(), resolution)
+    image = fp.paint(steps["contact"][:, :2], forward, lateral, steps["birth"], 1.0, region)
+    assert image.shape[1] == resolution and np.isfinite(image).all() and image.max() <= 1.0
+
+
+def test_planner_refuses_a_walker_that_stands_still():
+    with pytest.raises(paths.PathError, match="does not move"):
+        paths.plan_steps(np.zeros((10, 3)), np.arange(10), 0.7, 0.2)
+    with pytest.raises(paths.PathError, match="stride"):
+        paths.plan_steps(np.eye(3), np.arange(3), 0.0, 0.2)
+
+
+def test_heading_follows_a_circle_sampled_per_frame():
+    radius, frames = 5.0, np.arange(241, dtype=float)
+    angle = frames / 240 * np.pi  # half a circle over 240 frames
+    positions = np.stack([radius * np.cos(angle), radius * np.sin(angle), 0 * angle], 1)
+    steps = paths.plan_steps(positions, frames, 0.7, 0.2)
+    centre_angle = np.interp(steps["birth"], frames, angle)
+    expected = centre_angle + np.pi / 2
+    error = np.angle(np.exp(1j * (steps["heading"] - expected)))
+    assert np.abs(np.degrees(error)).max() < 0.01
