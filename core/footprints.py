@@ -142,7 +142,7 @@ def _prepare(centres, forward, lateral, births, depth_scales, frame_range):
     births = np.broadcast_to(np.asarray(births, dtype=np.float64), (n,))
     scales = np.broadcast_to(np.asarray(depth_scales, dtype=np.float64), (n,))
     start, end = frame_range
-    span = end - start if end > start else 1.0
+    span = frame_span(start, end)
     birth_unit = np.clip((births - start) / span, 0.0, 1.0)
     # Sole coordinates (a, b) of a plane offset d solve [forward lateral] (a, b) = d.
     det = forward[:, 0] * lateral[:, 1] - forward[:, 1] * lateral[:, 0]
@@ -246,9 +246,25 @@ def height(image, depth, rim):
     return rim * image[..., 1].astype(np.float64) - depth * image[..., 0].astype(np.float64)
 
 
-def revealed_height(image, depth, rim, frame, frame_range):
-    """The twin of the node group: only texels whose owner is born by `frame` are lowered."""
+def frame_span(start, end):
+    """Frames that B = 0..1 stands for: at least one, so a one-frame range still works."""
+    return max(float(end) - float(start), 1.0)
+
+
+def revealed_height(image, depth, rim, frame, frame_range, margin=1e-3):
+    """Twin of node group Sandscape Footprint Height at Noise Amount 0 (float32, like Cycles).
+
+    A texel shows once B * span + start < frame + margin.
+    """
+    f = np.float32
     start, end = frame_range
-    span = end - start if end > start else 1.0
-    born = image[..., 2].astype(np.float64) * span + start <= frame + 1e-4
-    return np.where(born, height(image, depth, rim), 0.0)
+    rgb = image[..., :3].astype(f)
+    birth = rgb[..., 2] * f(frame_span(start, end)) + f(start)
+    born = (birth < f(frame) + f(margin)).astype(f)
+    return (rgb[..., 1] * f(rim) - rgb[..., 0] * f(depth)) * born
+
+
+def faces_in_region(face_centres, low, high):
+    """Twin of node group Sandscape Region Cut: faces whose centre lies in the X-Y box."""
+    xy = np.asarray(face_centres)[:, :2]
+    return np.all((xy >= np.asarray(low)[:2]) & (xy <= np.asarray(high)[:2]), axis=1)

@@ -6,7 +6,7 @@ like ours, is never looked at. Re-running updates our material in place.
 
 import bpy
 
-from . import glint_shade, glints
+from . import footprint_height, glint_shade, glints
 from . import helper as h
 
 MATERIAL_KEY = "sandscape_material"
@@ -14,6 +14,11 @@ KIND = "sand"
 SAND_COLOR = (0.62, 0.45, 0.27, 1.0)
 SAND_ROUGHNESS = 0.9
 GLINT_INPUTS = ("Threshold", "Glint Size", "Facing Power", "Color", "Strength", "Seed")
+
+
+def default_glint_values():
+    """The glint group's own defaults, for a material made without the sand operator."""
+    return {name: glints.INPUTS[name][2] for name in GLINT_INPUTS}
 
 
 def find_sand_material(obj):
@@ -31,6 +36,17 @@ def glint_node(material):
     for node in material.node_tree.nodes:
         tree = getattr(node, "node_tree", None)
         if tree is not None and tree.get(h.GROUP_KEY) in (glints.NAME, glint_shade.NAME):
+            return node
+    return None
+
+
+def footprint_node(material):
+    """The Sandscape Footprint Height group node inside our material, or None."""
+    if material is None or material.node_tree is None:
+        return None
+    for node in material.node_tree.nodes:
+        tree = getattr(node, "node_tree", None)
+        if tree is not None and tree.get(h.GROUP_KEY) == footprint_height.NAME:
             return node
     return None
 
@@ -69,7 +85,10 @@ def update_material(material, values, image=None):
     wanted = glint_shade.NAME if image is not None else glints.NAME
     node = glint_node(material)
     if node is None or node.node_tree.get(h.GROUP_KEY) != wanted:
+        kept = _footprint_state(material)
         node = _build_tree(material, image)
+        if kept is not None:  # switching the glint source keeps the painted footprints
+            attach_footprints(material, *kept)
     if image is not None:
         image_node(material).image = image
     for name in GLINT_INPUTS:
@@ -99,3 +118,62 @@ def _build_tree(material, image):
     h.link(tree, glint.outputs["Emission"], add.inputs[1])
     h.link(tree, add.outputs[0], output.inputs["Surface"])
     return glint
+
+
+def _footprint_state(material):
+    node = footprint_node(material)
+    if node is None or not node.inputs["Print Map"].is_linked:
+        return None
+    texture = node.inputs["Print Map"].links[0].from_node
+    values = {socket.name: socket.default_value for socket in node.inputs
+              if not socket.is_linked and socket.name != "Frame" and hasattr(socket, "default_value")}
+    values = {name: tuple(v) if hasattr(v, "__len__") else v for name, v in values.items()}
+    return texture.image, _texture_object(material), values
+
+
+def _texture_object(material):
+    for node in material.node_tree.nodes:
+        if node.bl_idname == "ShaderNodeTexCoord" and node.label == "Print Space":
+            return node.object
+    return None
+
+
+def attach_footprints(material, image, terrain, values):
+    """Wire the footprint image into our material's displacement, or update the wiring.
+
+    image: the print map; it carries its region in the terrain's object space (custom
+    properties "region_min" and "region_size"), so the texture lines up with the terrain
+    and with the patch object that shares the material. values: group input defaults.
+    The Frame input gets a driver with the simple expression `frame`.
+    """
+    tree = material.node_tree
+    node = footprint_node(material)
+    if node is None:
+        output = next(n for n in tree.nodes if n.bl_idname == "ShaderNodeOutputMaterial")
+        coords = h.add_node(tree, "ShaderNodeTexCoord", (-700, -700), "Print Space")
+        mapping = h.add_node(tree, "ShaderNodeMapping", (-500, -700), "Print Region", vector_type="POINT")
+        texture = h.add_node(tree, "ShaderNodeTexImage", (-300, -700), "Print Map",
+                             interpolation="Linear", extension="CLIP")
+        node = h.add_node(tree, "ShaderNodeGroup", (50, -700), "Footprints",
+                          node_tree=h.ensure_group(footprint_height))
+        h.link(tree, coords.outputs["Object"], mapping.inputs["Vector"])
+        h.link(tree, mapping.outputs["Vector"], texture.inputs["Vector"])
+        h.link(tree, texture.outputs["Color"], node.inputs["Print Map"])
+        h.link(tree, coords.outputs["Object"], node.inputs["Vector"])
+        h.link(tree, node.outputs["Displacement"], output.inputs["Displacement"])
+        driver = node.inputs["Frame"].driver_add("default_value").driver
+        driver.type = "SCRIPTED"
+        driver.expression = "frame"  # a simple expression: evaluated without Python auto-run
+    texture = node.inputs["Print Map"].links[0].from_node
+    mapping = texture.inputs["Vector"].links[0].from_node
+    coords = mapping.inputs["Vector"].links[0].from_node
+    coords.object = terrain
+    texture.image = image
+    low, size = image["region_min"], image["region_size"]
+    mapping.inputs["Location"].default_value = (-low[0] / size[0], -low[1] / size[1], 0.0)
+    mapping.inputs["Scale"].default_value = (1.0 / size[0], 1.0 / size[1], 1.0)
+    for name, value in values.items():
+        if name in node.inputs and name != "Frame":
+            node.inputs[name].default_value = value
+    material.displacement_method = "DISPLACEMENT"
+    return node

@@ -1,0 +1,70 @@
+"""Scene settings: what the sidebar's Footprints section edits and the operators read.
+
+Scripts set them too: scene.sandscape_footprints.stride = 0.6, then
+bpy.ops.sandscape.paint_footprints(). Limits are soft: out-of-range values set from a
+script reach the operator, which reports them instead of silently clamping.
+"""
+
+import bpy
+from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, PointerProperty
+
+from ..node_groups import footprint_height
+
+DEPTH = footprint_height.INPUTS["Depth"]
+RIM = footprint_height.INPUTS["Rim"]
+NOISE = footprint_height.INPUTS["Noise Amount"]
+
+
+def _is_mesh(_self, obj):
+    return obj.type == "MESH"
+
+
+class SandscapeFootprintSettings(bpy.types.PropertyGroup):
+    source: EnumProperty(
+        name="Source", default="WALKER",
+        items=(("WALKER", "Walker", "Steps along the path of an animated object"),
+               ("PARTICLES", "Particles", "One print where each particle of a particle system is born")))
+    walker: PointerProperty(name="Walker", type=bpy.types.Object,
+                            description="Any object whose world position is animated over the frame range")
+    particle_object: PointerProperty(name="Particle Emitter", type=bpy.types.Object,
+                                     description="Object whose first particle system marks the prints")
+    terrain: PointerProperty(name="Terrain", type=bpy.types.Object, poll=_is_mesh,
+                             description="Mesh the prints are projected onto and painted into")
+    use_scene_range: BoolProperty(name="Scene Frame Range", default=True,
+                                  description="Walk over the scene's frame range")
+    frame_start: IntProperty(name="Start", default=1, description="First frame of the walk")
+    frame_end: IntProperty(name="End", default=250, description="Last frame of the walk")
+    stride: FloatProperty(name="Stride", default=0.7, soft_min=0.05, soft_max=3.0, subtype="DISTANCE",
+                          unit="LENGTH", description="Distance along the path from one print to the next")
+    stance: FloatProperty(name="Stance", default=0.2, soft_min=0.0, soft_max=1.0, subtype="DISTANCE",
+                          unit="LENGTH", description="Distance between the left and right feet")
+    foot_length: FloatProperty(name="Foot Length", default=0.27, soft_min=0.02, soft_max=2.0,
+                               subtype="DISTANCE", unit="LENGTH", description="Heel to toe")
+    foot_width: FloatProperty(name="Foot Width", default=0.10, soft_min=0.01, soft_max=1.0,
+                              subtype="DISTANCE", unit="LENGTH", description="Across the ball of the foot")
+    depth: FloatProperty(name="Depth", default=DEPTH[2], soft_min=0.0, soft_max=0.5, subtype="DISTANCE",
+                         unit="LENGTH", description=DEPTH[1])
+    rim: FloatProperty(name="Rim", default=RIM[2], soft_min=0.0, soft_max=0.2, subtype="DISTANCE",
+                       unit="LENGTH", description=RIM[1])
+    rim_width: FloatProperty(name="Rim Width", default=0.04, soft_min=0.0, soft_max=0.5, subtype="DISTANCE",
+                             unit="LENGTH", description="Width of the ring of pushed-up sand")
+    variation: FloatProperty(name="Variation", default=0.1, soft_min=0.0, soft_max=0.9, subtype="FACTOR",
+                             description="Random spread of each print's depth scale: 0.1 is +-10 %")
+    noise_amount: FloatProperty(name="Noise", default=NOISE[2], soft_min=0.0, soft_max=1.0,
+                                subtype="FACTOR", description=NOISE[1])
+    seed: IntProperty(name="Seed", default=0, min=0, description="Seed of the per-print variation")
+    resolution: IntProperty(name="Resolution", default=2048, soft_min=16, soft_max=16384,
+                            description="Texels along the longer side of the print region")
+    dicing_pixel_size: FloatProperty(name="Dicing", default=1.0, soft_min=0.25, soft_max=16.0,
+                                     description="Adaptive subdivision edge length in pixels over the prints")
+
+
+classes = (SandscapeFootprintSettings,)
+
+
+def register():
+    bpy.types.Scene.sandscape_footprints = PointerProperty(type=SandscapeFootprintSettings)
+
+
+def unregister():
+    del bpy.types.Scene.sandscape_footprints

@@ -1,0 +1,90 @@
+"""Sandscape Footprint Height: the painted footprint image as a displacement.
+
+Seed 000, section 3.2: red records depressions, green raised rims, and a noise texture
+adds subtle variation. Blue holds each texel's birth frame, so one image reveals the prints
+as the walker passes: a texel counts once Frame has reached its birth frame. Frame is
+driven by the expression `frame`, which runs without Python auto-run.
+Twin: core.footprints.revealed_height (with Noise Amount 0).
+"""
+
+from . import helper as h
+
+NAME = "Sandscape Footprint Height"
+VERSION = 1
+TREE_TYPE = "ShaderNodeTree"
+REVEAL_MARGIN = 1e-3  # frames: a print born at frame 12 shows at frame 12 despite float round-off
+
+# Socket name -> (type, description, default, min, max, subtype). Append only.
+INPUTS = {
+    "Print Map": ("NodeSocketColor", "The painted footprint image: R depression (1 = Depth), "
+                  "G raised rim (1 = Rim), B birth frame normalised to Frame Start..End",
+                  (0.0, 0.0, 0.0, 0.0), None, None, None),
+    "Depth": ("NodeSocketFloat", "How far a print presses into the sand where R is 1, in metres",
+              0.03, 0.0, None, "DISTANCE"),
+    "Rim": ("NodeSocketFloat", "Height of the sand pushed up around a print where G is 1, in metres",
+            0.008, 0.0, None, "DISTANCE"),
+    "Frame": ("NodeSocketFloat", "Current frame (driven by the expression 'frame'); texels born later "
+              "stay flat", 0.0, None, None, None),
+    "Frame Start": ("NodeSocketFloat", "Frame that blue 0 stands for", 1.0, None, None, None),
+    "Frame End": ("NodeSocketFloat", "Frame that blue 1 stands for", 250.0, None, None, None),
+    "Vector": ("NodeSocketVector", "Where to sample the variation noise (object coordinates)",
+               (0.0, 0.0, 0.0), None, None, None),
+    "Noise Amount": ("NodeSocketFloat", "Relative variation of print depth and rim: 0.1 is +-10 %",
+                     0.15, 0.0, 1.0, "FACTOR"),
+    "Noise Scale": ("NodeSocketFloat", "Scale of the variation noise (features per metre)",
+                    40.0, 0.0, None, None),
+}
+OUTPUTS = {
+    "Height": ("NodeSocketFloat", "Height of the revealed prints in metres: Rim G - Depth R, varied"),
+    "Displacement": ("NodeSocketVector", "Height along the normal, in world units, for the material's "
+                     "Displacement output"),
+}
+
+
+def build(tree):
+    tree.description = (
+        "Footprint displacement from a Sandscape print map: Rim × G − Depth × R, revealed where "
+        "the texel's birth frame (B) has been reached, varied by a noise texture")
+    for name, spec in INPUTS.items():
+        h.add_input(tree, name, *spec)
+    for name, (socket_type, description) in OUTPUTS.items():
+        h.add_output(tree, name, socket_type, description)
+
+    group_in, group_out = h.group_io(tree)
+    inputs = group_in.outputs
+    channels = h.add_node(tree, "ShaderNodeSeparateColor", (-700, 200))
+    h.link(tree, inputs["Print Map"], channels.inputs[0])
+
+    # Born where B * span + start < frame + margin; span is at least one frame, as in the painter.
+    span = h.math(tree, "SUBTRACT", inputs["Frame End"], inputs["Frame Start"], (-700, -100), "Span")
+    span = h.math(tree, "MAXIMUM", span.outputs[0], 1.0, (-500, -100), "Span ≥ 1")
+    birth = h.add_node(tree, "ShaderNodeMath", (-300, -100), "Birth Frame", operation="MULTIPLY_ADD")
+    h.link(tree, channels.outputs["Blue"], birth.inputs[0])
+    h.link(tree, span.outputs[0], birth.inputs[1])
+    h.link(tree, inputs["Frame Start"], birth.inputs[2])
+    now = h.math(tree, "ADD", inputs["Frame"], REVEAL_MARGIN, (-300, -300), "Frame + Margin")
+    born = h.math(tree, "LESS_THAN", birth.outputs[0], now.outputs[0], (-100, -150), "Born")
+
+    rim = h.math(tree, "MULTIPLY", channels.outputs["Green"], inputs["Rim"], (-400, 300), "Rim Height")
+    depth = h.math(tree, "MULTIPLY", channels.outputs["Red"], inputs["Depth"], (-400, 150), "Depth")
+    base = h.math(tree, "SUBTRACT", rim.outputs[0], depth.outputs[0], (-200, 250), "Rim − Depth")
+    revealed = h.math(tree, "MULTIPLY", base.outputs[0], born.outputs[0], (0, 150), "Revealed")
+
+    noise = h.add_node(tree, "ShaderNodeTexNoise", (-400, -500), "Variation", noise_dimensions="3D",
+                       inputs={"Detail": 2.0})
+    h.link(tree, inputs["Vector"], noise.inputs["Vector"])
+    h.link(tree, inputs["Noise Scale"], noise.inputs["Scale"])
+    centred = h.add_node(tree, "ShaderNodeMath", (-200, -500), "Noise −1..1", operation="MULTIPLY_ADD",
+                         inputs={1: 2.0, 2: -1.0})
+    h.link(tree, noise.outputs["Fac"], centred.inputs[0])
+    variation = h.add_node(tree, "ShaderNodeMath", (0, -500), "1 + Amount × Noise",
+                           operation="MULTIPLY_ADD", inputs={2: 1.0})
+    h.link(tree, centred.outputs[0], variation.inputs[0])
+    h.link(tree, inputs["Noise Amount"], variation.inputs[1])
+    height = h.math(tree, "MULTIPLY", revealed.outputs[0], variation.outputs[0], (200, 0), "Height")
+
+    displacement = h.add_node(tree, "ShaderNodeDisplacement", (450, -100), space="WORLD",
+                              inputs={"Midlevel": 0.0, "Scale": 1.0})
+    h.link(tree, height.outputs[0], displacement.inputs["Height"])
+    h.link(tree, height.outputs[0], group_out.inputs["Height"])
+    h.link(tree, displacement.outputs[0], group_out.inputs["Displacement"])
