@@ -26,7 +26,7 @@ OBJECT_KEY = "sandscape_object"
 TERRAIN_KEY = "sandscape_terrain"
 POINTS, PATCH = "footprints", "footprint_patch"
 PRINT_MAP = "print_map"
-ATTRIBUTES = {  # name -> (type, domain value type, description)
+ATTRIBUTES = {  # point attribute name -> (type, meaning)
     "birth_frame": ("FLOAT", "Frame at which the walker passes the print"),
     "heading": ("FLOAT", "Yaw of the print's forward axis about the terrain's Z, radians"),
     "side": ("INT", "+1 left foot, -1 right foot, 0 unknown (particle source)"),
@@ -135,8 +135,8 @@ def sample_particles(scene, emitter, frames):
             found_directions.append(direction)
     finally:
         scene.frame_set(kept)
-    return (np.concatenate(found_positions).astype(np.float64), np.concatenate(found_births).astype(np.float64),
-            np.concatenate(found_directions).astype(np.float64))
+    return tuple(np.concatenate(found).astype(np.float64)
+                 for found in (found_positions, found_births, found_directions))
 
 
 def project_onto_terrain(terrain, contacts_world, progress=None):
@@ -198,7 +198,7 @@ def write_points(terrain, points, collection):
     count = len(points["co"])
     mesh.vertices.add(count)
     mesh.vertices.foreach_set("co", np.ascontiguousarray(points["co"], dtype=np.float32).ravel())
-    for name, (kind, description) in ATTRIBUTES.items():
+    for name, (kind, _) in ATTRIBUTES.items():
         attribute = mesh.attributes.get(name) or mesh.attributes.new(name, kind, "POINT")
         field = "vector" if kind == "FLOAT_VECTOR" else "value"
         dtype = np.int32 if kind == "INT" else np.float32
