@@ -100,3 +100,46 @@ def project(camera_obj, points, width, height):
     clip = homogeneous @ (projection @ view).T
     ndc = clip[..., :2] / clip[..., 3:4]
     return (ndc[..., 0] + 1.0) / 2.0 * width, (ndc[..., 1] + 1.0) / 2.0 * height
+
+
+def height_field(size, subdivisions, height=None, name="Terrain"):
+    """A square grid mesh of `size` metres centred on the origin, z = height(x, y) (vectorised)."""
+    axis = np.linspace(-size / 2, size / 2, subdivisions + 1)
+    x, y = np.meshgrid(axis, axis)
+    z = np.zeros_like(x) if height is None else height(x, y)
+    n = subdivisions + 1
+    index = np.arange(n * n).reshape(n, n)
+    quads = np.stack([index[:-1, :-1], index[:-1, 1:], index[1:, 1:], index[1:, :-1]], -1).reshape(-1, 4)
+    mesh = bpy.data.meshes.new(name)
+    mesh.vertices.add(n * n)
+    mesh.vertices.foreach_set("co", np.stack([x, y, z], -1).astype(np.float32).ravel())
+    mesh.loops.add(quads.size)
+    mesh.loops.foreach_set("vertex_index", quads.ravel().astype(np.int32))
+    mesh.polygons.add(len(quads))
+    mesh.polygons.foreach_set("loop_start", (np.arange(len(quads)) * 4).astype(np.int32))
+    mesh.update(calc_edges=True)
+    mesh.validate()
+    obj = bpy.data.objects.new(name, mesh)
+    bpy.context.scene.collection.objects.link(obj)
+    return obj
+
+
+def keyframed_walker(path, frames, name="Walker"):
+    """An empty keyed at each frame to path(frame) -> (x, y, z): any animated object will do."""
+    walker = bpy.data.objects.new(name, None)
+    bpy.context.scene.collection.objects.link(walker)
+    for frame in frames:
+        walker.location = path(frame)
+        walker.keyframe_insert("location", frame=frame)
+    return walker
+
+
+def footprint_settings(terrain, walker, frames, **values):
+    """The scene's footprint settings for a walk over `frames` (first, last), plus overrides."""
+    scene = bpy.context.scene
+    scene.frame_start, scene.frame_end = frames
+    settings = scene.sandscape_footprints
+    settings.terrain, settings.walker = terrain, walker
+    for key, value in values.items():
+        setattr(settings, key, value)
+    return settings

@@ -1,0 +1,71 @@
+"""Prints sit on the terrain and face along the path: a 30 degree slope and a curved dune.
+
+Reference: the analytic surface z(x, y) and the analytic path tangent, not the mesh or the planner.
+"""
+
+import math
+
+import bpy
+import numpy as np
+import pytest
+
+from devtools import scenes
+
+RADIUS, FRAMES = 5.0, (1, 121)
+
+
+def arc(frame):
+    """Half a circle of RADIUS over the frame range, at a height the terrain never reaches."""
+    angle = (frame - FRAMES[0]) / (FRAMES[1] - FRAMES[0]) * math.pi
+    return (RADIUS * math.cos(angle), RADIUS * math.sin(angle) - 2.0, 20.0)
+
+
+def expected_heading(birth):
+    angle = (birth - FRAMES[0]) / (FRAMES[1] - FRAMES[0]) * math.pi
+    return angle + math.pi / 2
+
+
+SURFACES = {
+    "slope 30 deg": (lambda x, y: math.tan(math.radians(30)) * x, 20),
+    "curved dune": (lambda x, y: 1.5 * np.sin(2 * np.pi * x / 10) * np.cos(2 * np.pi * y / 14), 400),
+}
+
+
+def read(obj, name, width=1):
+    values = np.empty(len(obj.data.vertices) * width, np.float32)
+    obj.data.attributes[name].data.foreach_get("vector" if width == 3 else "value", values)
+    return values.reshape(-1, width) if width == 3 else values
+
+
+@pytest.mark.parametrize("surface", sorted(SURFACES))
+def test_prints_lie_on_the_surface_and_follow_the_tangent(surface):
+    height, subdivisions = SURFACES[surface]
+    terrain = scenes.height_field(20.0, subdivisions, height)
+    walker = scenes.keyframed_walker(arc, range(FRAMES[0], FRAMES[1] + 1))
+    scenes.footprint_settings(terrain, walker, FRAMES, stride=0.5)
+    bpy.ops.sandscape.emit_footprints()
+    points = next(o for o in bpy.data.objects if o.get("sandscape_object") == "footprints")
+    co = np.empty(len(points.data.vertices) * 3, np.float32)
+    points.data.vertices.foreach_get("co", co)
+    co = co.reshape(-1, 3).astype(np.float64)
+    assert len(co) == int(RADIUS * math.pi / 0.5) + 1
+    assert np.abs(co[:, 2] - height(co[:, 0], co[:, 1])).max() < 1e-3  # on the surface within 1 mm
+    error = np.angle(np.exp(1j * (read(points, "heading") - expected_heading(read(points, "birth_frame")))))
+    assert np.degrees(np.abs(error)).max() < 1.0
+    # Left and right alternate at half the stance from the path.
+    centre = np.array([RADIUS * 0, -2.0])
+    offset = np.hypot(co[:, 0] - centre[0], co[:, 1] - centre[1]) - RADIUS
+    np.testing.assert_allclose(np.abs(offset), 0.1, atol=2e-3)
+    assert (np.sign(offset) == -read(points, "side")).all()  # left of a left turn is inside the circle
+    normals = read(points, "surface_normal", 3)
+    assert (normals[:, 2] > 0).all()
+
+
+def test_prints_off_the_terrain_are_skipped_and_counted(capsys):
+    terrain = scenes.height_field(6.0, 12)
+    walker = scenes.keyframed_walker(lambda f: (-2.0 + f * 0.1, 0.0, 1.0), range(0, 61))
+    scenes.footprint_settings(terrain, walker, (0, 60), stride=0.5)
+    assert bpy.ops.sandscape.emit_footprints() == {"FINISHED"}
+    points = next(o for o in bpy.data.objects if o.get("sandscape_object") == "footprints")
+    planned = int(6.0 / 0.5) + 1
+    assert points["skipped"] == planned - len(points.data.vertices) > 0
