@@ -33,4 +33,42 @@ class SANDSCAPE_PT_sand(bpy.types.Panel):
             layout.template_ID(image, "image", open="image.open")
 
 
-classes = (SANDSCAPE_PT_sand,)
+# (heading, settings shown under it); the operators read the same settings.
+FOOTPRINT_SECTIONS = (
+    ("Walk", ("stride", "stance")),
+    ("Foot", ("foot_length", "foot_width", "depth", "rim", "rim_width", "variation", "noise_amount", "seed")),
+    ("Map", ("resolution", "dicing_pixel_size")),
+)
+
+
+class SANDSCAPE_PT_footprints(bpy.types.Panel):
+    bl_label = "Footprints"
+    bl_idname = "SANDSCAPE_PT_footprints"
+    bl_space_type = "VIEW_3D"
+    bl_region_type = "UI"
+    bl_category = "Sandscape"
+
+    def draw(self, context):
+        layout = self.layout
+        settings = context.scene.sandscape_footprints
+        layout.prop(settings, "source")
+        if settings.source == "WALKER":
+            layout.prop(settings, "walker")
+            layout.operator("sandscape.add_walker", icon="ARMATURE_DATA")
+        else:
+            layout.prop(settings, "particle_object")
+        layout.prop(settings, "terrain")
+        layout.prop(settings, "use_scene_range")
+        if not settings.use_scene_range:
+            layout.prop(settings, "frame_start")
+            layout.prop(settings, "frame_end")
+        for heading, names in FOOTPRINT_SECTIONS:
+            layout.label(text=heading)
+            column = layout.column(align=True)
+            for name in names:
+                column.prop(settings, name)
+        layout.operator("sandscape.emit_footprints", icon="PARTICLES")
+        layout.operator("sandscape.paint_footprints", icon="BRUSH_DATA")
+
+
+classes = (SANDSCAPE_PT_sand, SANDSCAPE_PT_footprints)

@@ -77,7 +77,7 @@ def plan_steps(positions, frames, stride, stance, first_side=LEFT):
     keep = np.concatenate(([True], np.diff(arc) > 1e-12))
     arc, positions, frames = arc[keep], positions[keep], frames[keep]
     tangents = horizontal_tangents(positions)
-    count = int(np.floor(arc[-1] / stride + 1e-9)) + 1
+    count = int(np.floor(arc[-1] / stride + 1e-6)) + 1  # a step a micro-stride short of the end counts
     s = np.minimum(np.arange(count) * stride, arc[-1])
     point = np.stack([np.interp(s, arc, positions[:, k]) for k in range(3)], axis=1)
     forward = np.stack([np.interp(s, arc, tangents[:, k]) for k in range(3)], axis=1)

@@ -103,7 +103,7 @@ def project(camera_obj, points, width, height):
 
 
 def height_field(size, subdivisions, height=None, name="Terrain"):
-    """A square grid mesh of `size` metres centred on the origin, z = height(x, y) (vectorised)."""
+    """A square grid mesh of `size` metres centred on the origin, z = height(x, y) (vectorised), UV 0..1."""
     axis = np.linspace(-size / 2, size / 2, subdivisions + 1)
     x, y = np.meshgrid(axis, axis)
     z = np.zeros_like(x) if height is None else height(x, y)
@@ -119,6 +119,8 @@ def height_field(size, subdivisions, height=None, name="Terrain"):
     mesh.polygons.foreach_set("loop_start", (np.arange(len(quads)) * 4).astype(np.int32))
     mesh.update(calc_edges=True)
     mesh.validate()
+    uv = np.stack([x, y], -1).reshape(-1, 2)[quads.ravel()] / size + 0.5
+    mesh.uv_layers.new(name="UVMap").uv.foreach_set("vector", uv.astype(np.float32).ravel())
     obj = bpy.data.objects.new(name, mesh)
     bpy.context.scene.collection.objects.link(obj)
     return obj

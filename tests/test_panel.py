@@ -60,3 +60,19 @@ def test_panel_shows_the_glint_image(sandscape):
     calls = draw_panel()
     assert any(c[0] == "template_ID" and c[2] == "image" for c in calls)
     assert "Noise" not in {c[3] for c in calls if c[0] == "prop"}  # linked inputs are not shown
+
+
+def test_footprints_panel_shows_every_setting_and_the_buttons():
+    layout = RecordingLayout()
+    bpy.types.SANDSCAPE_PT_footprints.draw(types.SimpleNamespace(layout=layout), bpy.context)
+    shown = {call[2] for call in layout.calls if call[0] == "prop"}
+    operators = [call[1] for call in layout.calls if call[0] == "operator"]
+    assert operators == ["sandscape.add_walker", "sandscape.emit_footprints", "sandscape.paint_footprints"]
+    settings = bpy.context.scene.sandscape_footprints
+    names = {p.identifier for p in settings.bl_rna.properties if p.identifier not in ("rna_type", "name")}
+    # Everything but the other source's object and the range the scene supplies.
+    assert names - shown == {"particle_object", "frame_start", "frame_end"}
+    settings.source, settings.use_scene_range = "PARTICLES", False
+    layout = RecordingLayout()
+    bpy.types.SANDSCAPE_PT_footprints.draw(types.SimpleNamespace(layout=layout), bpy.context)
+    assert {"particle_object", "frame_start", "frame_end"} <= {c[2] for c in layout.calls if c[0] == "prop"}

@@ -1,0 +1,172 @@
+"""Footprint operators: re-runs update, bad input is refused with nothing changed, stress cases."""
+
+import math
+import pathlib
+import tempfile
+import types
+
+import bpy
+import numpy as np
+import pytest
+
+from devtools import readback, scenes
+
+
+def ours(kind):
+    collections = {"points": bpy.data.objects, "patch": bpy.data.objects, "image": bpy.data.images}
+    key = {"points": "footprints", "patch": "footprint_patch", "image": "print_map"}[kind]
+    field = "sandscape_image" if kind == "image" else "sandscape_object"
+    return [d for d in collections[kind] if d.get(field) == key]
+
+
+def straight(length=3.0, frames=31, name="Walker"):
+    return scenes.keyframed_walker(lambda f: (-length / 2 + length * (f - 1) / (frames - 1), 0.0, 0.0),
+                                   range(1, frames + 1), name)
+
+
+@pytest.fixture
+def walk():
+    terrain = scenes.height_field(6.0, 12, name="Sand")
+    walker = straight()
+    return scenes.footprint_settings(terrain, walker, (1, 31), resolution=256)
+
+
+def test_rerun_updates_the_same_data(sandscape, walk):
+    assert bpy.ops.sandscape.paint_footprints() == {"FINISHED"}
+    counts = {name: len(getattr(bpy.data, name)) for name in ("objects", "meshes", "images", "materials",
+                                                               "node_groups")}
+    walk.stride, walk.resolution, walk.depth = 0.5, 300, 0.05
+    assert bpy.ops.sandscape.paint_footprints() == {"FINISHED"}
+    assert bpy.ops.sandscape.emit_footprints() == {"FINISHED"}
+    assert bpy.ops.sandscape.paint_footprints() == {"FINISHED"}
+    assert {name: len(getattr(bpy.data, name)) for name in counts} == counts
+    assert len(ours("points")) == len(ours("patch")) == len(ours("image")) == 1
+    assert len(ours("points")[0].data.vertices) == 7  # 3 m at 0.5 m
+    assert ours("image")[0].size[0] == 300
+    material = walk.terrain.active_material
+    node = sandscape.node_groups.sand_material.footprint_node(material)
+    assert node.inputs["Depth"].default_value == pytest.approx(0.05)
+    assert material.displacement_method == "DISPLACEMENT"
+    assert [m.type for m in walk.terrain.modifiers] == ["NODES"]
+    # The glint material and the footprints live in one material, on terrain and patch alike.
+    assert sandscape.node_groups.sand_material.glint_node(material) is not None
+    assert ours("patch")[0].active_material == material
+    # Switching the glint source keeps the footprint wiring.
+    bpy.context.view_layer.objects.active = walk.terrain
+    bpy.ops.sandscape.add_sand_material(source="IMAGE", image_resolution=16)
+    assert sandscape.node_groups.sand_material.footprint_node(material).inputs["Depth"].default_value == \
+        pytest.approx(0.05)
+
+
+def test_edited_points_are_painted_as_they_are(walk):
+    bpy.ops.sandscape.emit_footprints()
+    points = ours("points")[0]
+    points.data.vertices[0].co.x += 0.5  # the artist moves a print
+    bpy.ops.sandscape.paint_footprints()
+    assert points.data.vertices[0].co.x == pytest.approx(-1.0)  # not re-emitted over the edit
+
+
+def test_cut_and_patch_share_every_face_once(sandscape, walk):
+    bpy.ops.sandscape.paint_footprints()
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    terrain = walk.terrain.evaluated_get(depsgraph).data
+    patch = ours("patch")[0].data
+    assert len(terrain.polygons) + len(patch.polygons) == len(walk.terrain.data.polygons)
+    assert 0 < len(patch.polygons) < len(walk.terrain.data.polygons)
+    centres = {tuple(np.round(p.center, 6)) for p in terrain.polygons}
+    assert not centres & {tuple(np.round(p.center, 6)) for p in patch.polygons}
+    # The Region Cut group against its twin on the original faces.
+    modifier = walk.terrain.modifiers[0]
+    low, high = modifier["Socket_1"], modifier["Socket_2"]
+    original = np.array([p.center for p in walk.terrain.data.polygons])
+    inside = sandscape.core.footprints.faces_in_region(original, low, high)
+    assert len(terrain.polygons) == (~inside).sum() and len(patch.polygons) == inside.sum()
+
+
+def test_frame_driver_runs_without_python_auto_run(sandscape, walk):
+    bpy.ops.sandscape.paint_footprints()
+    material = walk.terrain.active_material
+    fcurve = material.node_tree.animation_data.drivers[0]
+    assert fcurve.driver.expression == "frame" and fcurve.driver.is_simple_expression
+    path = pathlib.Path(tempfile.mkdtemp()) / "walk.blend"
+    bpy.ops.wm.save_as_mainfile(filepath=str(path), compress=True)
+    preferences = bpy.context.preferences.filepaths
+    kept = preferences.use_scripts_auto_execute
+    preferences.use_scripts_auto_execute = False
+    try:
+        bpy.ops.wm.open_mainfile(filepath=str(path), load_ui=False)
+        material = bpy.data.materials["Sandscape Sand"]
+        bpy.context.scene.frame_set(23)
+        node = sandscape.node_groups.sand_material.footprint_node(material)
+        assert node.inputs["Frame"].default_value == 23.0
+        image = node.inputs["Print Map"].links[0].from_node.image
+        assert image.packed_file is not None and image.is_float
+    finally:
+        preferences.use_scripts_auto_execute = kept
+
+
+def bad_scene(case, settings):
+    if case == "no walker":
+        settings.walker = None
+    elif case == "not animated":
+        settings.walker = bpy.data.objects.new("Statue", None)
+        bpy.context.scene.collection.objects.link(settings.walker)
+    elif case == "stands still":
+        settings.walker = scenes.keyframed_walker(lambda f: (1.0, 1.0, 0.0), range(1, 32), "Idle")
+    elif case == "terrain not a mesh":
+        curve = bpy.data.objects.new("Curve", bpy.data.curves.new("Curve", "CURVE"))
+        bpy.context.scene.collection.objects.link(curve)
+        settings.terrain = None
+        settings["terrain"] = curve  # a script can bypass the panel's mesh filter
+    elif case == "no terrain":
+        settings.terrain = None
+    elif case == "off the terrain":
+        settings.walker = scenes.keyframed_walker(lambda f: (50.0 + f, 0.0, 0.0), range(1, 32), "Away")
+
+
+BAD_INPUT = [
+    ("no walker", {}, "No walker"),
+    ("not animated", {}, "not animated"),
+    ("stands still", {}, "does not move"),
+    ("no terrain", {}, "No terrain"),
+    ("terrain not a mesh", {}, "not a mesh"),
+    ("off the terrain", {}, "No print lands"),
+    ("ok", {"stride": 0.0}, "Stride"),
+    ("ok", {"stride": -1.0}, "Stride"),
+    ("ok", {"stride": math.nan}, "Stride"),
+    ("ok", {"use_scene_range": False, "frame_start": 10, "frame_end": 5}, "empty"),
+    ("ok", {"resolution": 0}, "Resolution"),
+    ("ok", {"foot_width": 1.0}, "Foot width"),
+]
+
+
+@pytest.mark.parametrize("case,values,message", BAD_INPUT)
+@pytest.mark.parametrize("operator", ["emit_footprints", "paint_footprints"])
+def test_bad_input_is_refused_and_changes_nothing(walk, operator, case, values, message):
+    bad_scene(case, walk)
+    for key, value in values.items():
+        setattr(walk, key, value)
+    frame = bpy.context.scene.frame_current
+    before = readback.data_snapshot()
+    with pytest.raises(RuntimeError, match=message):
+        getattr(bpy.ops.sandscape, operator)()
+    assert readback.data_snapshot() == before
+    assert bpy.context.scene.frame_current == frame
+    # The operator itself returns CANCELLED (bpy.ops turns the ERROR report into the exception).
+    cls = getattr(bpy.types, f"SANDSCAPE_OT_{operator}")
+    reports = []
+    fake = types.SimpleNamespace(report=lambda kind, text: reports.append((kind, text)))
+    fake.run = types.MethodType(cls.run, fake)
+    assert cls.execute(fake, bpy.context) == {"CANCELLED"}
+    assert reports[0][0] == {"ERROR"} and message in reports[0][1]
+    assert readback.data_snapshot() == before
+
+
+def test_add_walker_makes_a_walk_that_paints(walk):
+    walk.walker = None
+    assert bpy.ops.sandscape.add_walker() == {"FINISHED"}
+    assert bpy.ops.sandscape.add_walker() == {"FINISHED"}  # updates, no second walker
+    walkers = [o for o in bpy.data.objects if o.get("sandscape_object") == "walker"]
+    assert len(walkers) == 1 and walk.walker == walkers[0]
+    assert bpy.ops.sandscape.paint_footprints() == {"FINISHED"}
+    assert len(ours("points")[0].data.vertices) >= 6  # 80 % of 6 m at 0.7 m, plus the S
