@@ -69,3 +69,30 @@ def test_prints_off_the_terrain_are_skipped_and_counted(capsys):
     points = next(o for o in bpy.data.objects if o.get("sandscape_object") == "footprints")
     planned = int(6.0 / 0.5) + 1
     assert points["skipped"] == planned - len(points.data.vertices) > 0
+
+
+def test_a_particle_system_is_a_print_source():
+    terrain = scenes.height_field(6.0, 12)
+    emitter = scenes.keyframed_walker(lambda f: (-2.0 + 0.1 * f, 0.0, 0.5), range(1, 41), "Feet")
+    mesh = bpy.data.meshes.new("Feet")
+    mesh.from_pydata([(-0.01, -0.01, 0), (0.01, -0.01, 0), (0.01, 0.01, 0), (-0.01, 0.01, 0)], [],
+                     [(0, 1, 2, 3)])
+    feet = bpy.data.objects.new("Feet Mesh", mesh)
+    bpy.context.scene.collection.objects.link(feet)
+    feet.parent = emitter
+    feet.modifiers.new("Steps", "PARTICLE_SYSTEM")
+    particles = feet.particle_systems[0].settings
+    particles.count, particles.frame_start, particles.frame_end, particles.lifetime = 12, 1, 30, 200
+    particles.physics_type, particles.normal_factor = "NO", 0.0
+    settings = scenes.footprint_settings(terrain, None, (1, 40), source="PARTICLES")
+    settings.particle_object = feet
+    assert bpy.ops.sandscape.emit_footprints() == {"FINISHED"}
+    points = next(o for o in bpy.data.objects if o.get("sandscape_object") == "footprints")
+    births = read(points, "birth_frame")
+    co = np.array([v.co for v in points.data.vertices])
+    assert len(co) == 12 and (births >= 1).all() and (births <= 30).all()
+    # Each print lies on the ground where the feet were on the first whole frame of its life
+    # (a particle without physics sits where the emitter is at that frame), +- the 2 cm face.
+    np.testing.assert_allclose(co[:, 0], -2.0 + 0.1 * np.ceil(births - 1e-4), atol=0.011)
+    np.testing.assert_allclose(co[:, 2], 0.0, atol=1e-6)
+    np.testing.assert_allclose(np.abs(read(points, "heading")), 0.0, atol=1e-3)  # moving along +X
