@@ -23,6 +23,7 @@ test: lint
 
 bench: $(STAMP)
 	$(PY) bench/glints.py
+	$(PY) bench/footprints.py
 
 clean:
 	rm -rf out build .pytest_cache .ruff_cache

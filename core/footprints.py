@@ -92,7 +92,8 @@ def sole_profile(distance, sole, texel):
         return pressed, np.zeros_like(pressed)
     t = distance / band
     rim = np.where((t > 0) & (t < 1), (4.0 * t * (1.0 - t)) ** 2, 0.0)
-    return pressed, rim
+    # A float32 distance a hair short of the band's end leaves ~1e-13: that is outside the stamp.
+    return pressed, np.where(rim > 1e-9, rim, 0.0)
 
 
 class Region:
@@ -171,35 +172,45 @@ def paint(centres, forward, lateral, births, depth_scales, region, sole=None, fr
         out = np.zeros((region.height, region.width, 4), dtype=F32)
     centres, inverse, birth_unit, scales, order = _prepare(centres, forward, lateral, births,
                                                            depth_scales, frame_range)
-    reach = sole.reach(texel)
-    window = int(np.ceil(2 * reach / texel)) + 2
-    per_chunk = max(1, CHUNK_ENTRIES // (window * window))
+    if len(order) == 0:
+        return out
+    # Each print's box in the plane: the sole's half-length and half-width plus the rim band,
+    # through its (projected) axes. A square of the full reach would hold twice the texels.
+    band = sole.rim_band(texel)
+    along, across = sole.length / 2 + band, sole.width / 2 + band
+    forward_abs = np.abs(np.asarray(forward, np.float64).reshape(-1, 2))
+    lateral_abs = np.abs(np.asarray(lateral, np.float64).reshape(-1, 2))
+    half = np.nan_to_num(forward_abs * along + lateral_abs * across)  # (N, 2): half extents in x, y
+    windows = np.ceil(2 * half / texel).astype(np.int64) + 2
+    largest = int(windows[order].prod(axis=1).max())
+    per_chunk = max(1, CHUNK_ENTRIES // largest)
     flat = out.reshape(-1, 4)
     for begin in range(0, len(order), per_chunk):
-        _stamp_chunk(flat, region, sole, window, reach, order[begin:begin + per_chunk],
+        prints = order[begin:begin + per_chunk]
+        _stamp_chunk(flat, region, sole, windows[prints].max(axis=0), half[prints], prints,
                      centres, inverse, birth_unit, scales)
     return out
 
 
-def _stamp_chunk(flat, region, sole, window, reach, prints, centres, inverse, birth_unit, scales):
+def _stamp_chunk(flat, region, sole, window, half, prints, centres, inverse, birth_unit, scales):
     texel = region.texel
     c = centres[prints]
-    first = np.floor((c - (region.x0, region.y0) - reach) / texel).astype(np.int64)
-    steps = np.arange(window)
-    col = first[:, 0, None, None] + steps[None, None, :]
-    row = first[:, 1, None, None] + steps[None, :, None]
+    first = np.floor((c - (region.x0, region.y0) - half) / texel).astype(np.int64)
+    col = first[:, 0, None, None] + np.arange(window[0])[None, None, :]
+    row = first[:, 1, None, None] + np.arange(window[1])[None, :, None]
     col, row = np.broadcast_arrays(col, row)
     dx = region.x0 + (col + 0.5) * texel - c[:, 0, None, None]
     dy = region.y0 + (row + 0.5) * texel - c[:, 1, None, None]
     m = inverse[prints][:, :, None, None]
-    a = m[:, 0] * dx + m[:, 1] * dy
-    b = m[:, 2] * dx + m[:, 3] * dy
+    # Offsets need float64 (texel positions far from the origin); the profile does not.
+    a = (m[:, 0] * dx + m[:, 1] * dy).astype(F32)
+    b = (m[:, 2] * dx + m[:, 3] * dy).astype(F32)
     pressed, rim = sole_profile(sole_distance(a, b, sole), sole, texel)
     inside = ((col >= 0) & (col < region.width) & (row >= 0) & (row < region.height)
               & ((pressed > 0) | (rim > 0)))
     rank = np.broadcast_to(np.arange(len(prints))[:, None, None], inside.shape)[inside]
     pixel = (row * region.width + col)[inside]
-    pressed, rim = pressed[inside], rim[inside]
+    pressed, rim = pressed[inside].astype(np.float64), rim[inside].astype(np.float64)
     if pixel.size == 0:
         return
     scale = scales[prints][rank]
