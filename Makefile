@@ -24,6 +24,7 @@ test: lint
 bench: $(STAMP)
 	$(PY) bench/glints.py
 	$(PY) bench/footprints.py
+	$(PY) bench/footprint_dicing.py
 
 clean:
 	rm -rf out build .pytest_cache .ruff_cache
