@@ -382,9 +382,9 @@ def emit_inputs(scene, settings):
     """What the prints depend on; stored on the points object to tell when to re-emit."""
     start, end = frame_range(scene, settings)
     source = settings.walker if settings.source == "WALKER" else settings.particle_object
-    return {"source": settings.source, "object": source.name if source else "", "start": start,
-            "end": end, "stride": settings.stride, "stance": settings.stance,
-            "variation": settings.variation, "seed": settings.seed}
+    return {"source": settings.source, "object": source.name if source else "",
+            "terrain": settings.terrain.name, "start": start, "end": end, "stride": settings.stride,
+            "stance": settings.stance, "variation": settings.variation, "seed": settings.seed}
 
 
 def is_animated(obj):
