@@ -5,12 +5,17 @@ import bpy
 from ..node_groups import sand_material
 
 
-class SANDSCAPE_PT_sand(bpy.types.Panel):
-    bl_label = "Sand"
-    bl_idname = "SANDSCAPE_PT_sand"
+class SandscapeTab:
+    """Where every Sandscape panel lives: the Sandscape tab of the 3D viewport's sidebar."""
+
     bl_space_type = "VIEW_3D"
     bl_region_type = "UI"
     bl_category = "Sandscape"
+
+
+class SANDSCAPE_PT_sand(SandscapeTab, bpy.types.Panel):
+    bl_label = "Sand"
+    bl_idname = "SANDSCAPE_PT_sand"
 
     def draw(self, context):
         layout = self.layout
@@ -41,12 +46,9 @@ FOOTPRINT_SECTIONS = (
 )
 
 
-class SANDSCAPE_PT_footprints(bpy.types.Panel):
+class SANDSCAPE_PT_footprints(SandscapeTab, bpy.types.Panel):
     bl_label = "Footprints"
     bl_idname = "SANDSCAPE_PT_footprints"
-    bl_space_type = "VIEW_3D"
-    bl_region_type = "UI"
-    bl_category = "Sandscape"
 
     def draw(self, context):
         layout = self.layout

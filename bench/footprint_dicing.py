@@ -28,7 +28,7 @@ import numpy as np
 REPO = pathlib.Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(REPO))
 
-from devtools import session  # noqa: E402
+from devtools import results, session  # noqa: E402
 
 RESOLUTION = (480, 270)
 
@@ -78,7 +78,7 @@ def main(argv=None):
     terrain = scenes.height_field(40.0, 80, name="Sand")
     walker = scenes.keyframed_walker(lambda f: (-length / 2 + length * (f - 1) / 119, 0.0, 0.0),
                                      range(frames[0], frames[1] + 1))
-    settings = scenes.footprint_settings(terrain, walker, frames, resolution=2048)
+    scenes.footprint_settings(terrain, walker, frames, resolution=2048)
     bpy.ops.sandscape.paint_footprints()
     scene = readback.cycles_scene(resolution=RESOLUTION, samples=1)
     scene.frame_set(frames[1])
@@ -96,8 +96,8 @@ def main(argv=None):
     cycles_module.enable_print_stats()
 
     patch = next(o for o in bpy.data.objects if o.get("sandscape_object") == "footprint_patch")
-    results = {}
-    results["patch"] = captured_render(readback)
+    renders = {}
+    renders["patch"] = captured_render(readback)
     cut = next(m for m in terrain.modifiers if m.type == "NODES")
     cut.show_render = False
     patch.hide_render = True
@@ -105,14 +105,14 @@ def main(argv=None):
     for name in ("subdivision_type", "use_adaptive_subdivision", "adaptive_space", "adaptive_pixel_size",
                  "levels"):
         setattr(whole, name, getattr(patch.modifiers[0], name))
-    results["whole"] = captured_render(readback)
+    renders["whole"] = captured_render(readback)
 
     rows = []
-    for name, (seconds, _, text) in results.items():
+    for name, (seconds, _, text) in renders.items():
         memory, found = geometry_memory(text)
         rows.append((name, seconds, memory, found))
         print(name, f"{seconds:.2f} s", f"{memory:.2f} MiB", found[:4])
-    difference = np.abs(results["patch"][1][..., 0] - results["whole"][1][..., 0])
+    difference = np.abs(renders["patch"][1][..., 0] - renders["whole"][1][..., 0])
     lines = [f"\n## Footprint dicing — {datetime.date.today()} — `python bench/footprint_dicing.py`\n",
              f"Machine: {platform.machine()}, {len(os.sched_getaffinity(0))} cores, "
              f"bpy {bpy.app.version_string}. "
@@ -126,13 +126,9 @@ def main(argv=None):
         lines.append(f"| {label} | {seconds:.2f} | {memory:.2f} | {parts} |")
     lines.append(f"\nRendered world Z, patch vs whole: max difference {difference.max() * 1000:.3f} mm, "
                  f"mean {difference.mean() * 1000:.4f} mm; deepest rendered point "
-                 f"{results['patch'][1][..., 0].min() * 1000:.2f} mm (prints in view).")
-    text = "\n".join(lines) + "\n"
-    print(text)
-    if not args.no_append:
-        with open(REPO / "bench" / "RESULTS.md", "a") as results_file:
-            results_file.write(text)
-    del settings
+                 f"{renders['patch'][1][..., 0].min() * 1000:.2f} mm (prints in view).")
+    results.publish(lines, append=not args.no_append)
+
 
 
 if __name__ == "__main__":

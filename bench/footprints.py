@@ -36,7 +36,7 @@ REPO = pathlib.Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(REPO))
 
 from core import paths  # noqa: E402
-from devtools import session  # noqa: E402
+from devtools import results, session  # noqa: E402
 
 FRAMES = (1, 120)
 STRIDE, STANCE, PRINTS = 0.7, 0.2, 12
@@ -238,11 +238,7 @@ def main(argv=None):
                      f"{row['canvas_floor']:.4f} | {row['painter'] / row['canvas_floor']:.2f} | "
                      f"{row['operator']:.3f} | {row['prints_per_second']:.0f} | "
                      + " | ".join(dp_cells) + " |")
-    text = "\n".join(lines) + "\n"
-    print(text)
-    if not args.no_append:
-        with open(REPO / "bench" / "RESULTS.md", "a") as results:
-            results.write(text)
+    results.publish(lines, append=not args.no_append)
 
 
 if __name__ == "__main__":

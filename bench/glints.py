@@ -20,7 +20,7 @@ import time
 REPO = pathlib.Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(REPO))
 
-from devtools import session  # noqa: E402
+from devtools import results, session  # noqa: E402
 
 TARGET_RMSE = 0.01
 
@@ -131,11 +131,7 @@ def main(argv=None):
                          f"({seconds:.3f} s).")
         else:
             lines.append(f"Glint RMSE < {TARGET_RMSE} {label} denoising: not reached up to {counts[-1]} spp.")
-    text = "\n".join(lines) + "\n"
-    print(text)
-    if not args.no_append:
-        with open(REPO / "bench" / "RESULTS.md", "a") as results:
-            results.write(text)
+    results.publish(lines, append=not args.no_append)
 
 
 if __name__ == "__main__":

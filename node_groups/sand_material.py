@@ -29,26 +29,24 @@ def find_sand_material(obj):
     return None
 
 
-def glint_node(material):
-    """The group node (procedural or image glints) inside our material, or None."""
+def _group_node(material, group_names):
     if material is None or material.node_tree is None:
         return None
     for node in material.node_tree.nodes:
         tree = getattr(node, "node_tree", None)
-        if tree is not None and tree.get(h.GROUP_KEY) in (glints.NAME, glint_shade.NAME):
+        if tree is not None and tree.get(h.GROUP_KEY) in group_names:
             return node
     return None
+
+
+def glint_node(material):
+    """The group node (procedural or image glints) inside our material, or None."""
+    return _group_node(material, (glints.NAME, glint_shade.NAME))
 
 
 def footprint_node(material):
     """The Sandscape Footprint Height group node inside our material, or None."""
-    if material is None or material.node_tree is None:
-        return None
-    for node in material.node_tree.nodes:
-        tree = getattr(node, "node_tree", None)
-        if tree is not None and tree.get(h.GROUP_KEY) == footprint_height.NAME:
-            return node
-    return None
+    return _group_node(material, (footprint_height.NAME,))
 
 
 def image_node(material):
