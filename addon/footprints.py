@@ -395,6 +395,13 @@ def is_animated(obj):
     return False
 
 
+def _stage(progress, low, high):
+    """A progress callback for one stage, mapping its 0..1 onto low..high of the whole bar."""
+    if progress is None:
+        return None
+    return lambda fraction: progress(low + (high - low) * fraction)
+
+
 def emit(scene, settings, progress=None):
     """Walk the source over the frame range, project prints onto the terrain, write the points.
 
@@ -408,7 +415,7 @@ def emit(scene, settings, progress=None):
         if not is_animated(walker):
             raise FootprintError(f"'{walker.name}' is not animated: give it keyframes, a Follow Path "
                                  "constraint or an animated parent, or use Add Walker")
-        positions = sample_walker(scene, walker, frames, progress)
+        positions = sample_walker(scene, walker, frames, _stage(progress, 0.0, 0.5))
         try:
             steps = paths.plan_steps(positions, frames, settings.stride, settings.stance)
         except paths.PathError as error:
@@ -419,7 +426,7 @@ def emit(scene, settings, progress=None):
         if len(contacts) == 0:
             raise FootprintError(f"'{settings.particle_object.name}' emits no particles in {start}..{end}")
         side = np.zeros(len(contacts), np.int32)
-    hits, normals, landed = project_onto_terrain(terrain, contacts, progress)
+    hits, normals, landed = project_onto_terrain(terrain, contacts, _stage(progress, 0.5, 1.0))
     if not landed.any():
         raise FootprintError(f"No print lands on '{terrain.name}': the walk never crosses it")
     forward_local = local_directions(terrain, forward)
@@ -444,7 +451,7 @@ def paint(scene, settings, progress=None):
     points_obj = find_object(POINTS, terrain)
     emitted = points_obj is None or points_obj.get("emitted_from") != signature(emit_inputs(scene, settings))
     if emitted:
-        points_obj, _ = emit(scene, settings, progress)
+        points_obj, _ = emit(scene, settings, _stage(progress, 0.0, 0.6))
     points = read_points(points_obj)
     if len(points["co"]) == 0:
         raise FootprintError(f"'{points_obj.name}' holds no prints to paint")

@@ -170,3 +170,10 @@ def test_add_walker_makes_a_walk_that_paints(walk):
     assert len(walkers) == 1 and walk.walker == walkers[0]
     assert bpy.ops.sandscape.paint_footprints() == {"FINISHED"}
     assert len(ours("points")[0].data.vertices) >= 6  # 80 % of 6 m at 0.7 m, plus the S
+
+
+def test_progress_only_moves_forward(sandscape, walk):
+    seen = []
+    sandscape.addon.footprints.paint(bpy.context.scene, walk, seen.append)
+    assert seen and seen == sorted(seen) and 0.0 <= seen[0] and seen[-1] <= 1.0
+    assert seen[-1] >= 0.9  # emitting and painting both reported
