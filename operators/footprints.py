@@ -167,7 +167,6 @@ def _shape_path(path, terrain, length):
         t = index / 3
         point.co = (centre[0] + (t - 0.5) * length, centre[1] + sway * math.sin(2 * math.pi * t), top)
         point.handle_left_type = point.handle_right_type = "AUTO"
-    curve.path_duration = 100
 
 
 def _new_walker(scene, path):
