@@ -73,4 +73,20 @@ class SANDSCAPE_PT_footprints(SandscapeTab, bpy.types.Panel):
         layout.operator("sandscape.paint_footprints", icon="BRUSH_DATA")
 
 
-classes = (SANDSCAPE_PT_sand, SANDSCAPE_PT_footprints)
+class SANDSCAPE_PT_atmosphere(SandscapeTab, bpy.types.Panel):
+    bl_label = "Atmosphere"
+    bl_idname = "SANDSCAPE_PT_atmosphere"
+
+    def draw(self, context):
+        layout = self.layout
+        settings = context.scene.sandscape_atmosphere
+        column = layout.column(align=True)
+        for name in ("sun_elevation", "sun_azimuth", "density", "wavelengths", "margin"):
+            column.prop(settings, name)
+        # Where the user sees it: why the dust is a box and not a world volume.
+        layout.label(text="Dust fills a box around the scene:", icon="INFO")
+        layout.label(text="a world volume would block the sun lamp")
+        layout.operator("sandscape.add_atmosphere", icon="LIGHT_SUN")
+
+
+classes = (SANDSCAPE_PT_sand, SANDSCAPE_PT_footprints, SANDSCAPE_PT_atmosphere)

@@ -5,8 +5,17 @@ bpy.ops.sandscape.paint_footprints(). Limits are soft: out-of-range values set f
 script reach the operator, which reports them instead of silently clamping.
 """
 
+import math
+
 import bpy
-from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, PointerProperty
+from bpy.props import (
+    BoolProperty,
+    EnumProperty,
+    FloatProperty,
+    FloatVectorProperty,
+    IntProperty,
+    PointerProperty,
+)
 
 from ..node_groups import footprint_height
 
@@ -59,12 +68,30 @@ class SandscapeFootprintSettings(bpy.types.PropertyGroup):
                                      description="Adaptive subdivision edge length in pixels over the prints")
 
 
-classes = (SandscapeFootprintSettings,)
+class SandscapeAtmosphereSettings(bpy.types.PropertyGroup):
+    sun_elevation: FloatProperty(name="Sun Elevation", default=math.radians(25.0), subtype="ANGLE",
+                                 soft_min=math.radians(-10.0), soft_max=math.radians(90.0),
+                                 description="Height of the sun above the horizon")
+    sun_azimuth: FloatProperty(name="Sun Azimuth", default=math.radians(135.0), subtype="ANGLE",
+                               description="Compass direction of the sun: 0 along +Y, 90 degrees along +X")
+    density: FloatProperty(name="Density", default=0.02, soft_min=0.0, soft_max=1.0, precision=4,
+                           description="Scattering coefficient at 550 nm, 1/m; 0 adds no volume at all. "
+                           "The volume is a box around the scene: a world volume would block the sun lamp")
+    wavelengths: FloatVectorProperty(name="Wavelengths", size=3, default=(680.0, 550.0, 440.0),
+                                     soft_min=380.0, soft_max=780.0,
+                                     description="Red, green, blue wavelengths in nm for the 1/lambda^4 law")
+    margin: FloatProperty(name="Margin", default=2.0, soft_min=0.0, soft_max=100.0, subtype="DISTANCE",
+                          unit="LENGTH", description="How far the dust box reaches beyond the scene")
+
+
+classes = (SandscapeFootprintSettings, SandscapeAtmosphereSettings)
 
 
 def register():
     bpy.types.Scene.sandscape_footprints = PointerProperty(type=SandscapeFootprintSettings)
+    bpy.types.Scene.sandscape_atmosphere = PointerProperty(type=SandscapeAtmosphereSettings)
 
 
 def unregister():
+    del bpy.types.Scene.sandscape_atmosphere
     del bpy.types.Scene.sandscape_footprints

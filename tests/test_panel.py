@@ -76,3 +76,13 @@ def test_footprints_panel_shows_every_setting_and_the_buttons():
     layout = RecordingLayout()
     bpy.types.SANDSCAPE_PT_footprints.draw(types.SimpleNamespace(layout=layout), bpy.context)
     assert {"particle_object", "frame_start", "frame_end"} <= {c[2] for c in layout.calls if c[0] == "prop"}
+
+
+def test_atmosphere_panel_shows_its_settings_and_button():
+    layout = RecordingLayout()
+    bpy.types.SANDSCAPE_PT_atmosphere.draw(types.SimpleNamespace(layout=layout), bpy.context)
+    shown = {call[2] for call in layout.calls if call[0] == "prop"}
+    settings = bpy.context.scene.sandscape_atmosphere
+    names = {p.identifier for p in settings.bl_rna.properties} - {"rna_type", "name"}
+    assert shown == names
+    assert [c[1] for c in layout.calls if c[0] == "operator"] == ["sandscape.add_atmosphere"]

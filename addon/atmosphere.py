@@ -1,0 +1,147 @@
+"""The bpy side of the atmosphere: the sun lamp, the sky world, the bounded dust volume.
+
+A world volume would block a sun lamp completely in Cycles (the world volume is
+infinite), so with a sun the scattering medium is a box fitted around the scene.
+"""
+
+import math
+
+import bpy
+import numpy as np
+from mathutils import Vector
+
+from ..core import atmosphere as air
+from ..node_groups import dust_volume
+from ..node_groups import helper as h
+
+OBJECT_KEY = "sandscape_object"
+WORLD_KEY = "sandscape_world"
+SUN, VOLUME = "sun", "dust_volume"
+
+
+def find_object(kind):
+    return next((o for o in bpy.data.objects if o.get(OBJECT_KEY) == kind), None)
+
+
+def scene_sun(scene):
+    """Our sun, else the scene's first sun lamp, else None."""
+    ours = find_object(SUN)
+    if ours is not None and scene.objects.get(ours.name) is ours:
+        return ours
+    return next((o for o in scene.objects if o.type == "LIGHT" and o.data.type == "SUN"), None)
+
+
+def sun_rotation(elevation, azimuth):
+    """Euler rotation of a sun lamp that shines from (elevation, azimuth): its +Z points at the sun."""
+    return (math.pi / 2 - elevation, 0.0, math.pi - azimuth)
+
+
+def ensure_sun(scene, elevation, azimuth):
+    sun = scene_sun(scene)
+    if sun is None:
+        sun = bpy.data.objects.new("Sandscape Sun", bpy.data.lights.new("Sandscape Sun", "SUN"))
+        sun[OBJECT_KEY] = SUN
+        sun.data.energy = 4.0
+        scene.collection.objects.link(sun)
+    sun.rotation_mode = "XYZ"
+    sun.rotation_euler = sun_rotation(elevation, azimuth)
+    return sun
+
+
+def ensure_sky(scene, elevation, azimuth):
+    """Our world with a Sky Texture whose sun matches the lamp; returns (world, replaced world or None).
+
+    A user's world is kept (fake user) and named on ours as "replaced_world" to switch back.
+    """
+    world = scene.world
+    replaced = None
+    if world is None or world.get(WORLD_KEY) is None:
+        replaced = world
+        world = next((w for w in bpy.data.worlds if w.get(WORLD_KEY)), None)
+        if world is None:
+            world = bpy.data.worlds.new("Sandscape Sky")
+            world[WORLD_KEY] = "sky"
+            tree = world.node_tree
+            tree.nodes.clear()
+            sky = h.add_node(tree, "ShaderNodeTexSky", (-400, 0), "Sky", sky_type="MULTIPLE_SCATTERING")
+            background = h.add_node(tree, "ShaderNodeBackground", (-100, 0))
+            output = h.add_node(tree, "ShaderNodeOutputWorld", (200, 0))
+            h.link(tree, sky.outputs["Color"], background.inputs["Color"])
+            h.link(tree, background.outputs[0], output.inputs["Surface"])
+        if replaced is not None:
+            replaced.use_fake_user = True
+            world["replaced_world"] = replaced.name
+        scene.world = world
+    sky = next(n for n in world.node_tree.nodes if n.bl_idname == "ShaderNodeTexSky")
+    # The lamp lights the scene; a sun disc in the sky as well would light it twice.
+    sky.sun_disc = False
+    sky.sun_elevation = elevation
+    sky.sun_rotation = azimuth % (2 * math.pi)
+    return world, replaced
+
+
+def scene_bounds(scene, margin):
+    """World-space box around the scene's renderable geometry (ours excluded), plus margin."""
+    kinds = {"MESH", "CURVE", "SURFACE", "META", "FONT", "POINTCLOUD", "VOLUME"}
+    corners = [obj.matrix_world @ Vector(corner) for obj in scene.objects
+               if obj.type in kinds and obj.get(OBJECT_KEY) is None and not obj.hide_render
+               for corner in obj.bound_box]
+    if not corners:
+        return np.array([-10.0, -10.0, 0.0]) - margin, np.array([10.0, 10.0, 10.0]) + margin
+    points = np.array([[c.x, c.y, c.z] for c in corners])
+    return points.min(0) - margin, points.max(0) + margin
+
+
+def volume_color(coefficients):
+    """(Color, Density) for Volume Scatter: the coefficients over their largest, and that largest."""
+    strongest = float(np.max(coefficients))
+    if strongest <= 0:
+        return (1.0, 1.0, 1.0, 1.0), 0.0
+    ratio = np.asarray(coefficients) / strongest
+    return (*map(float, ratio), 1.0), strongest
+
+
+def ensure_volume(scene, coefficients, low, high):
+    """Our dust box over low..high with the Rayleigh volume; removed when nothing scatters."""
+    box = find_object(VOLUME)
+    if float(np.max(coefficients)) <= 0.0:
+        if box is not None:
+            mesh = box.data
+            bpy.data.objects.remove(box)
+            bpy.data.meshes.remove(mesh)
+        return None
+    if box is None:
+        mesh = bpy.data.meshes.new("Sandscape Dust")
+        verts = [(x, y, z) for z in (-0.5, 0.5) for y in (-0.5, 0.5) for x in (-0.5, 0.5)]
+        faces = [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)]
+        mesh.from_pydata(verts, [], faces)
+        box = bpy.data.objects.new("Sandscape Dust", mesh)
+        box[OBJECT_KEY] = VOLUME
+        scene.collection.objects.link(box)
+        material = bpy.data.materials.new("Sandscape Dust")
+        material["sandscape_material"] = "dust"
+        tree = material.node_tree
+        tree.nodes.clear()
+        group = h.add_node(tree, "ShaderNodeGroup", (0, 0), "Dust", node_tree=h.ensure_group(dust_volume))
+        output = h.add_node(tree, "ShaderNodeOutputMaterial", (300, 0))
+        h.link(tree, group.outputs["Volume"], output.inputs["Volume"])
+        mesh.materials.append(material)
+        box.display_type = "BOUNDS"  # see through it in the viewport
+    box.location = tuple((np.asarray(low) + np.asarray(high)) / 2)
+    box.scale = tuple(np.asarray(high) - np.asarray(low))
+    group = next(n for n in box.active_material.node_tree.nodes if n.bl_idname == "ShaderNodeGroup")
+    color, density = volume_color(coefficients)
+    group.inputs["Color"].default_value = color
+    group.inputs["Density"].default_value = density
+    return box
+
+
+def apply(scene, settings):
+    """Sun, sky and volume from the settings; returns what was done, for the report."""
+    elevation, azimuth = settings.sun_elevation, settings.sun_azimuth
+    sun = ensure_sun(scene, elevation, azimuth)
+    world, replaced = ensure_sky(scene, elevation, azimuth)
+    coefficients = air.rayleigh_coefficients(settings.density, tuple(settings.wavelengths))
+    low, high = scene_bounds(scene, settings.margin)
+    box = ensure_volume(scene, coefficients, low, high)
+    return {"sun": sun, "world": world, "replaced": replaced, "volume": box, "coefficients": coefficients}

@@ -1,0 +1,118 @@
+"""The atmosphere operator: transmittance through the dust rendered against exp(-beta d), the sky's
+sun where the lamp points, re-runs, a user's world kept, bad input refused."""
+
+import math
+
+import bpy
+import numpy as np
+import pytest
+
+from core import atmosphere as air
+from devtools import readback, scenes
+
+DENSITY = 0.5  # 1/m at 550 nm
+THICKNESS = 1.0  # m
+
+
+def camera_only_emitter(size=2.0):
+    """A white plane at z = 0 that glows for camera rays only, so nothing scatters light back."""
+    plane = readback.uv_plane(size, "Emitter")
+    material = bpy.data.materials.new("Camera Glow")
+    tree = material.node_tree
+    tree.nodes.clear()
+    path = tree.nodes.new("ShaderNodeLightPath")
+    emission = tree.nodes.new("ShaderNodeEmission")
+    output = tree.nodes.new("ShaderNodeOutputMaterial")
+    tree.links.new(path.outputs["Is Camera Ray"], emission.inputs["Strength"])
+    tree.links.new(emission.outputs[0], output.inputs["Surface"])
+    plane.data.materials.append(material)
+    return plane
+
+
+def test_rendered_transmittance_matches_the_twin(sandscape):
+    camera_only_emitter()
+    beta = air.rayleigh_coefficients(DENSITY)
+    sandscape.addon.atmosphere.ensure_volume(bpy.context.scene, beta, (-2.0, -2.0, 0.5),
+                                             (2.0, 2.0, 0.5 + THICKNESS))
+    scene = readback.cycles_scene(resolution=(32, 32), samples=64)
+    scenes.camera("ORTHO", location=(0.0, 0.0, 5.0), ortho_scale=1.0)
+    pixels = readback.render(scene)[..., :3].reshape(-1, 3)
+    expected = air.slab_transmittance(beta, THICKNESS)
+    measured = pixels.mean(axis=0)
+    assert np.isfinite(pixels).all()
+    assert np.abs(measured / expected - 1.0).max() < 0.02, (measured, expected)
+    assert measured[2] < measured[1] < measured[0]  # blue is scattered out most
+
+
+def mirror_ball_sun_direction():
+    """Direction of the brightest sky seen in a mirror sphere from straight above."""
+    material = bpy.data.materials.new("Mirror")
+    bsdf = material.node_tree.nodes["Principled BSDF"]
+    bsdf.inputs["Metallic"].default_value, bsdf.inputs["Roughness"].default_value = 1.0, 0.0
+    scenes.analytic_sphere(material, 1.0, (0.0, 0.0, 50.0))
+    scene = readback.cycles_scene(resolution=(240, 240), samples=1)
+    scenes.sharp_pixels(scene)
+    scene.cycles.max_bounces = 1
+    scenes.camera("ORTHO", location=(0.0, 0.0, 55.0), ortho_scale=2.0)
+    brightness = readback.render(scene)[..., :3].sum(-1)
+    y, x = (np.indices(brightness.shape) + 0.5) / 240 * 2 - 1
+    inside = x * x + y * y < 0.98
+    normal = np.stack([x, y, np.sqrt(np.clip(1 - x * x - y * y, 0, 1))], -1)
+    reflected = 2 * normal[..., 2:3] * normal - np.array([0.0, 0.0, 1.0])
+    top = inside & (brightness >= np.percentile(brightness[inside], 99.9))
+    direction = (reflected[top] * brightness[top, None]).sum(0)
+    return direction / np.linalg.norm(direction)
+
+
+def test_sky_sun_matches_the_lamp():
+    settings = bpy.context.scene.sandscape_atmosphere
+    settings.sun_elevation, settings.sun_azimuth, settings.density = math.radians(35), math.radians(60), 0.0
+    bpy.ops.sandscape.add_atmosphere()
+    sky = next(n for n in bpy.context.scene.world.node_tree.nodes if n.bl_idname == "ShaderNodeTexSky")
+    assert sky.sky_type == "MULTIPLE_SCATTERING"
+    sky.sun_disc, sky.sun_size = True, math.radians(6)  # a visible disc to find, for this test only
+    sun = next(o for o in bpy.context.scene.objects if o.type == "LIGHT")
+    sun.hide_render = True
+    lamp = np.array(sun.matrix_world.col[2][:3])  # a sun shines along its -Z
+    seen = mirror_ball_sun_direction()
+    assert math.degrees(math.acos(min(1.0, float(seen @ lamp)))) < 1.0
+    assert lamp == pytest.approx(air.sun_direction(math.radians(35), math.radians(60)), abs=1e-6)
+
+
+def test_rerun_updates_and_density_zero_removes_the_volume():
+    bpy.ops.mesh.primitive_plane_add(size=10)
+    settings = bpy.context.scene.sandscape_atmosphere
+    bpy.ops.sandscape.add_atmosphere()
+    settings.sun_elevation = 0.5
+    bpy.ops.sandscape.add_atmosphere()
+    kinds = [o.get("sandscape_object") for o in bpy.data.objects if o.get("sandscape_object")]
+    assert sorted(kinds) == ["dust_volume", "sun"] and len(bpy.data.worlds) == 1
+    box = next(o for o in bpy.data.objects if o.get("sandscape_object") == "dust_volume")
+    assert tuple(box.scale) == pytest.approx((14.0, 14.0, 4.0))  # the plane plus a 2 m margin
+    settings.density = 0.0
+    bpy.ops.sandscape.add_atmosphere()
+    assert not [o for o in bpy.data.objects if o.get("sandscape_object") == "dust_volume"]
+    assert not [m for m in bpy.data.meshes if m.name.startswith("Sandscape Dust")]
+
+
+def test_a_users_world_and_sun_are_kept():
+    theirs = bpy.data.worlds.new("Their World")
+    bpy.context.scene.world = theirs
+    lamp = bpy.data.objects.new("Their Sun", bpy.data.lights.new("Their Sun", "SUN"))
+    bpy.context.scene.collection.objects.link(lamp)
+    bpy.ops.sandscape.add_atmosphere()
+    assert bpy.context.scene.world != theirs and theirs.use_fake_user
+    assert bpy.context.scene.world["replaced_world"] == "Their World"
+    assert not [o for o in bpy.data.objects if o.get("sandscape_object") == "sun"]  # theirs was used
+    assert lamp.matrix_world.col[2][2] == pytest.approx(math.sin(math.radians(25.0)), abs=1e-6)
+
+
+@pytest.mark.parametrize("wavelengths, density", [((680, 0, 440), 0.02), ((-680, 550, 440), 0.02),
+                                                  ((680, 550, 440), -1.0), ((680, 550, 440), math.nan)])
+def test_bad_input_is_refused_and_changes_nothing(wavelengths, density):
+    settings = bpy.context.scene.sandscape_atmosphere
+    settings.wavelengths, settings.density = wavelengths, density
+    before = readback.data_snapshot()
+    with pytest.raises(RuntimeError, match="avelengths|ensity"):
+        bpy.ops.sandscape.add_atmosphere()
+    assert readback.data_snapshot() == before
