@@ -94,3 +94,45 @@ def data_snapshot():
             except (AttributeError, TypeError):
                 continue
     return snapshot
+
+
+def float_image(pixels, name="Probe Image"):
+    """A Non-Color float image holding (H, W, 4) pixels, rows bottom-up."""
+    height, width = pixels.shape[:2]
+    image = bpy.data.images.new(name, width, height, alpha=True, float_buffer=True)
+    image.colorspace_settings.name = "Non-Color"
+    image.pixels.foreach_set(np.ascontiguousarray(pixels, dtype=np.float32).ravel())
+    return image
+
+
+def composite_group(group, values, output, resolution):
+    """Run one compositor group through the real compositor; numpy arrays become Image nodes.
+
+    values: input name -> (H, W, 4) array or a plain value. Returns (H, W, 4), rows bottom-up.
+    """
+    scene = cycles_scene(resolution=resolution, samples=1)
+    if scene.camera is None:
+        camera = bpy.data.objects.new("Compositor Camera", bpy.data.cameras.new("Compositor Camera"))
+        scene.collection.objects.link(camera)
+        scene.camera = camera
+    tree = bpy.data.node_groups.new("Compositor Probe", "CompositorNodeTree")
+    tree.interface.new_socket("Image", in_out="OUTPUT", socket_type="NodeSocketColor")
+    node = tree.nodes.new("CompositorNodeGroup")
+    node.node_tree = group
+    for name, value in values.items():
+        if isinstance(value, np.ndarray):
+            source = tree.nodes.new("CompositorNodeImage")
+            source.image = float_image(value, f"Probe {name}")
+            tree.links.new(source.outputs["Image"], node.inputs[name])
+        else:
+            node.inputs[name].default_value = value
+    out = tree.nodes.new("NodeGroupOutput")
+    tree.links.new(node.outputs[output], out.inputs[0])
+    kept = scene.compositing_node_group
+    scene.compositing_node_group = tree
+    scene.render.use_compositing = True
+    try:
+        return render(scene)
+    finally:
+        scene.compositing_node_group = kept
+        bpy.data.node_groups.remove(tree)

@@ -1,0 +1,123 @@
+"""Post effects in plain numpy: the luminance-gated blur and screen-space god rays.
+
+Twins of the compositor groups "Sandscape Gated Blur" and "Sandscape God Rays". Images are
+(height, width, channels) float arrays with row 0 at the bottom, like Blender's.
+
+Gated blur (seed 000, section 4.2): a 3x3 Gaussian (centre 0.147761, edges 0.118318,
+corners 0.0947416, normalised to sum 1) replaces a pixel only where the luminance of the
+blurred and the original pixel differ by more than a threshold, so flat areas keep detail.
+Beyond the image the nearest edge pixel repeats.
+
+God rays (seed 002, GPU Gems 3 ch. 13): for a pixel at uv and the sun at L,
+    rays(uv) = exposure * sum_{i=1..N} weight * decay^(i-1) * occlusion(uv - i * (uv - L) * density / N)
+with bilinear sampling that reads 0 outside the image.
+"""
+
+import numpy as np
+
+GAUSS_CENTRE, GAUSS_EDGE, GAUSS_CORNER = 0.147761, 0.118318, 0.0947416
+LUMINANCE = np.array([0.2126, 0.7152, 0.0722])  # Rec. 709, Blender's linear scene luminance
+
+
+class PostError(ValueError):
+    """Parameters that would make the effect diverge or mean nothing."""
+
+
+def gaussian_kernel():
+    """The seed's 3x3 kernel, normalised to sum exactly 1 (the raw weights sum to 0.9999994)."""
+    kernel = np.array([[GAUSS_CORNER, GAUSS_EDGE, GAUSS_CORNER],
+                       [GAUSS_EDGE, GAUSS_CENTRE, GAUSS_EDGE],
+                       [GAUSS_CORNER, GAUSS_EDGE, GAUSS_CORNER]])
+    return kernel / kernel.sum()
+
+
+def luminance(image):
+    return np.asarray(image, dtype=np.float64)[..., :3] @ LUMINANCE
+
+
+def blur3(image):
+    """3x3 Gaussian with edge pixels repeated beyond the border."""
+    image = np.asarray(image, dtype=np.float64)
+    padded = np.pad(image, ((1, 1), (1, 1), (0, 0)), mode="edge")
+    kernel = gaussian_kernel()
+    height, width = image.shape[:2]
+    out = np.zeros_like(image)
+    for dy in range(3):
+        for dx in range(3):
+            out += kernel[dy, dx] * padded[dy:dy + height, dx:dx + width]
+    return out
+
+
+def gated_blur(image, threshold):
+    """The blurred pixel where |L(blurred) - L(original)| > threshold, else the original."""
+    image = np.asarray(image, dtype=np.float64)
+    blurred = blur3(image)
+    gate = np.abs(luminance(blurred) - luminance(image)) > threshold
+    return np.where(gate[..., None], blurred, image)
+
+
+def sample_bilinear(image, u, v):
+    """Bilinear samples at normalised (u, v) (pixel centres at (i + 0.5) / size); 0 outside."""
+    height, width = image.shape[:2]
+    x = np.asarray(u) * width - 0.5
+    y = np.asarray(v) * height - 0.5
+    x0, y0 = np.floor(x).astype(np.int64), np.floor(y).astype(np.int64)
+    fx, fy = x - x0, y - y0
+    out = 0.0
+    for oy, wy in ((0, 1 - fy), (1, fy)):
+        for ox, wx in ((0, 1 - fx), (1, fx)):
+            xi, yi = x0 + ox, y0 + oy
+            valid = (xi >= 0) & (xi < width) & (yi >= 0) & (yi < height)
+            texel = image[np.clip(yi, 0, height - 1), np.clip(xi, 0, width - 1)]
+            weight = np.where(valid, wx * wy, 0.0)
+            out = out + texel * (weight[..., None] if texel.ndim > weight.ndim else weight)
+    return out
+
+
+def check_rays(samples, density, weight, decay, exposure):
+    if int(samples) < 1:
+        raise PostError(f"god rays need at least 1 sample, got {samples}")
+    if not 0.0 <= decay <= 1.0:
+        raise PostError(f"decay must lie in [0, 1] (above 1 the rays grow without bound), got {decay}")
+    for name, value in (("density", density), ("weight", weight), ("exposure", exposure)):
+        if not (np.isfinite(value) and value >= 0):
+            raise PostError(f"{name} must be 0 or more, got {value}")
+
+
+def god_rays(occlusion, sun_uv, samples=32, density=0.9, weight=0.05, decay=0.97, exposure=1.0):
+    """Radial accumulation of an occlusion image towards the sun (normalised screen position)."""
+    check_rays(samples, density, weight, decay, exposure)
+    occlusion = np.asarray(occlusion, dtype=np.float64)
+    height, width = occlusion.shape[:2]
+    v, u = (np.indices((height, width)) + 0.5) / np.array([height, width])[:, None, None]
+    out = 0.0
+    for i in range(1, int(samples) + 1):
+        scale = 1.0 - i * density / samples  # the sample sits at L + scale * (uv - L)
+        su = sun_uv[0] + scale * (u - sun_uv[0])
+        sv = sun_uv[1] + scale * (v - sun_uv[1])
+        out = out + weight * decay ** (i - 1) * sample_bilinear(occlusion, su, sv)
+    return exposure * out
+
+
+def screen_position(view_projection, direction):
+    """Normalised screen position (u, v) of a direction at infinity, and whether it is in front.
+
+    view_projection: the camera's 4x4 projection @ view matrix.
+    """
+    clip = np.asarray(view_projection, dtype=np.float64) @ np.append(np.asarray(direction, float), 0.0)
+    w = clip[3]
+    if w <= 1e-12:
+        return (np.nan, np.nan), False
+    return ((clip[0] / w + 1.0) / 2.0, (clip[1] / w + 1.0) / 2.0), True
+
+
+def sun_intensity(sun_uv, in_front, fade=0.25):
+    """1 with the sun in the frame, easing to 0 at `fade` (screen widths) outside it; 0 behind."""
+    if not in_front or not np.isfinite(sun_uv).all():
+        return 0.0
+    u, v = sun_uv
+    outside = max(0.0, -u, u - 1.0, -v, v - 1.0)
+    if fade <= 0:
+        return float(outside == 0.0)
+    t = min(outside / fade, 1.0)
+    return float(1.0 - t * t * (3.0 - 2.0 * t))

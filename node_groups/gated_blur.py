@@ -1,0 +1,56 @@
+"""Sandscape Gated Blur: the seed's 3x3 Gaussian, kept only where it changes the luminance.
+
+Seed 000, section 4.2. Nine one-pixel translations (nearest, edge pixels extended) weighted
+by the normalised kernel; a pixel takes the blurred value where |L(blurred) - L(original)|
+exceeds Threshold. Twin: core.post.gated_blur.
+"""
+
+from ..core import post
+from . import helper as h
+
+NAME = "Sandscape Gated Blur"
+VERSION = 1
+TREE_TYPE = "CompositorNodeTree"
+
+
+def build(tree):
+    tree.description = ("3x3 Gaussian (0.147761 / 0.118318 / 0.0947416, normalised) applied where it "
+                        "changes the luminance by more than Threshold")
+    h.add_input(tree, "Image", "NodeSocketColor", "Image to blur (the scattered light)", (0.0, 0.0, 0.0, 1.0))
+    h.add_input(tree, "Threshold", "NodeSocketFloat", "Luminance change below which a pixel stays sharp",
+                0.01, 0.0, None)
+    h.add_output(tree, "Image", "NodeSocketColor", "The gated blur")
+    group_in, group_out = h.group_io(tree)
+    kernel = post.gaussian_kernel()
+    # The centre first: the compositor gives a sum the domain of its first operand, and a
+    # translated first operand would shift the whole blur by a pixel.
+    offsets = [(1, 1)] + [(row, col) for row in range(3) for col in range(3) if (row, col) != (1, 1)]
+    total = None
+    for index, (row, col) in enumerate(offsets):
+        y = 300 - 150 * index
+        shift = h.add_node(tree, "CompositorNodeTranslate", (-600, y),
+                           inputs={"X": float(col - 1), "Y": float(row - 1), "Interpolation": "Nearest",
+                                   "Extension X": "Extend", "Extension Y": "Extend"})
+        h.link(tree, group_in.outputs["Image"], shift.inputs["Image"])
+        weighted = h.add_node(tree, "ShaderNodeVectorMath", (-400, y), operation="SCALE",
+                              inputs={"Scale": float(kernel[row, col])})
+        h.link(tree, shift.outputs[0], weighted.inputs[0])
+        if total is None:
+            total = weighted
+        else:
+            added = h.add_node(tree, "ShaderNodeVectorMath", (-200, y), operation="ADD")
+            h.link(tree, total.outputs[0], added.inputs[0])
+            h.link(tree, weighted.outputs[0], added.inputs[1])
+            total = added
+    blurred_luma = h.add_node(tree, "CompositorNodeRGBToBW", (0, 200))
+    original_luma = h.add_node(tree, "CompositorNodeRGBToBW", (0, 0))
+    h.link(tree, total.outputs[0], blurred_luma.inputs[0])
+    h.link(tree, group_in.outputs["Image"], original_luma.inputs[0])
+    change = h.math(tree, "SUBTRACT", blurred_luma.outputs[0], original_luma.outputs[0], (200, 100))
+    change = h.math(tree, "ABSOLUTE", change.outputs[0], None, (350, 100))
+    gate = h.math(tree, "GREATER_THAN", change.outputs[0], group_in.outputs["Threshold"], (500, 100), "Gate")
+    choose = h.add_node(tree, "ShaderNodeMix", (700, 0), data_type="RGBA", blend_type="MIX")
+    h.link(tree, gate.outputs[0], choose.inputs["Factor"])
+    h.link(tree, group_in.outputs["Image"], choose.inputs[6])
+    h.link(tree, total.outputs[0], choose.inputs[7])
+    h.link(tree, choose.outputs[2], group_out.inputs["Image"])
