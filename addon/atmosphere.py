@@ -145,3 +145,84 @@ def apply(scene, settings):
     low, high = scene_bounds(scene, settings.margin)
     box = ensure_volume(scene, coefficients, low, high)
     return {"sun": sun, "world": world, "replaced": replaced, "volume": box, "coefficients": coefficients}
+
+
+# ---------------------------------------------------------------- post effects
+
+def view_projection(scene, camera):
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    render = scene.render
+    width = render.resolution_x * render.resolution_percentage // 100
+    height = render.resolution_y * render.resolution_percentage // 100
+    projection = np.array(camera.calc_matrix_camera(depsgraph, x=width, y=height))
+    return projection @ np.array(camera.matrix_world.inverted())
+
+
+def key_sun(scene, tree, sun, fade):
+    """Key the sun's screen position and the rays' intensity on every frame of the range.
+
+    Keyframes, not a driver: a render farm needs no scripts. Returns [(frame, u, v, intensity)].
+    """
+    from ..core import post
+    from ..node_groups import post_effects
+
+    sun_node = post_effects.sun_key_node(tree)
+    rays = post_effects.rays_node(tree)
+    if tree.animation_data is not None:
+        tree.animation_data_clear()
+    kept = scene.frame_current
+    curve = []
+    try:
+        for frame in range(scene.frame_start, scene.frame_end + 1):
+            scene.frame_set(frame)
+            direction = np.array(sun.matrix_world.col[2][:3])
+            (u, v), in_front = post.screen_position(view_projection(scene, scene.camera), direction)
+            intensity = post.sun_intensity((u, v), in_front, fade)
+            if not in_front:
+                u, v = 0.5, 0.5  # any finite place: the intensity is 0
+            sun_node.inputs["X"].default_value, sun_node.inputs["Y"].default_value = u, v
+            rays.inputs["Intensity"].default_value = intensity
+            for socket in (sun_node.inputs["X"], sun_node.inputs["Y"], rays.inputs["Intensity"]):
+                socket.keyframe_insert("default_value", frame=frame)
+            curve.append((frame, u, v, intensity))
+    finally:
+        scene.frame_set(kept)
+    return curve
+
+
+def apply_post_effects(scene, settings):
+    """Our compositor tree on the scene, built for the settings; a user's tree is kept aside."""
+    from ..node_groups import post_effects
+
+    current = scene.compositing_node_group
+    ours = next((g for g in bpy.data.node_groups if g.get(post_effects.TREE_KEY)), None)
+    replaced = None
+    if current is not None and not current.get(post_effects.TREE_KEY):
+        replaced = current
+        current.use_fake_user = True
+    if not (settings.use_blur or settings.use_god_rays):
+        if ours is not None:
+            previous = bpy.data.node_groups.get(ours.get("replaced_tree", ""))
+            bpy.data.node_groups.remove(ours)
+            scene.compositing_node_group = previous if replaced is None else replaced
+        return {"tree": None, "replaced": replaced, "curve": [], "switched_engine": False}
+    if ours is None:
+        ours = bpy.data.node_groups.new("Sandscape Post Effects", "CompositorNodeTree")
+        ours[post_effects.TREE_KEY] = True
+    if replaced is not None:
+        ours["replaced_tree"] = replaced.name
+    # The volume and environment passes are Cycles passes.
+    switched_engine = scene.render.engine != "CYCLES"
+    scene.render.engine = "CYCLES"
+    view_layer = scene.view_layers[0]
+    view_layer.cycles.use_pass_volume_direct = settings.use_blur
+    view_layer.cycles.use_pass_volume_indirect = settings.use_blur
+    view_layer.use_pass_environment = settings.use_god_rays
+    post_effects.build(ours, settings)
+    scene.compositing_node_group = ours
+    scene.render.use_compositing = True
+    curve = []
+    if settings.use_god_rays:
+        sun = scene_sun(scene)
+        curve = key_sun(scene, ours, sun, settings.fade)
+    return {"tree": ours, "replaced": replaced, "curve": curve, "switched_engine": switched_engine}

@@ -84,14 +84,39 @@ class SandscapeAtmosphereSettings(bpy.types.PropertyGroup):
                           unit="LENGTH", description="How far the dust box reaches beyond the scene")
 
 
-classes = (SandscapeFootprintSettings, SandscapeAtmosphereSettings)
+class SandscapePostSettings(bpy.types.PropertyGroup):
+    use_blur: BoolProperty(name="Gated Blur", default=True,
+                           description="Blur the scattered light where it changes the luminance (seed 000)")
+    blur_threshold: FloatProperty(name="Threshold", default=0.01, soft_min=0.0, soft_max=1.0, precision=4,
+                                  description="Luminance change below which the scattered light stays sharp")
+    use_god_rays: BoolProperty(name="God Rays", default=True,
+                               description="Screen-space light scattering towards the sun (GPU Gems 3)")
+    samples: IntProperty(name="Samples", default=32, soft_min=4, soft_max=128,
+                         description="Samples along each ray: more is smoother and slower")
+    ray_density: FloatProperty(name="Density", default=0.9, soft_min=0.0, soft_max=1.0,
+                               description="Fraction of the way to the sun the samples span")
+    ray_weight: FloatProperty(name="Weight", default=0.05, soft_min=0.0, soft_max=1.0,
+                              description="Weight of each sample")
+    ray_decay: FloatProperty(name="Decay", default=0.97, soft_min=0.5, soft_max=1.0,
+                             description="Falloff per sample; above 1 the rays would grow without bound")
+    ray_exposure: FloatProperty(name="Exposure", default=1.0, soft_min=0.0, soft_max=10.0,
+                                description="Overall strength of the rays")
+    disc_radius: FloatProperty(name="Sun Disc", default=0.08, soft_min=0.005, soft_max=0.5,
+                               description="Radius of the glowing disc around the sun, in frame heights")
+    fade: FloatProperty(name="Edge Fade", default=0.25, soft_min=0.0, soft_max=1.0,
+                        description="How far outside the frame (in frame widths) the rays fade out")
+
+
+classes = (SandscapeFootprintSettings, SandscapeAtmosphereSettings, SandscapePostSettings)
 
 
 def register():
     bpy.types.Scene.sandscape_footprints = PointerProperty(type=SandscapeFootprintSettings)
     bpy.types.Scene.sandscape_atmosphere = PointerProperty(type=SandscapeAtmosphereSettings)
+    bpy.types.Scene.sandscape_post = PointerProperty(type=SandscapePostSettings)
 
 
 def unregister():
+    del bpy.types.Scene.sandscape_post
     del bpy.types.Scene.sandscape_atmosphere
     del bpy.types.Scene.sandscape_footprints

@@ -6,6 +6,7 @@ import bpy
 
 from ..addon import atmosphere
 from ..core import atmosphere as air
+from ..core import post
 
 
 class SANDSCAPE_OT_add_atmosphere(bpy.types.Operator):
@@ -43,4 +44,46 @@ def _problem(settings):
     return None
 
 
-classes = (SANDSCAPE_OT_add_atmosphere,)
+class SANDSCAPE_OT_add_post_effects(bpy.types.Operator):
+    """Add or update the compositor: gated blur of the scattered light and god rays towards the sun"""
+
+    bl_idname = "sandscape.add_post_effects"
+    bl_label = "Add Post Effects"
+    bl_options = {"REGISTER", "UNDO"}
+
+    def execute(self, context):
+        scene = context.scene
+        settings = scene.sandscape_post
+        problem = _post_problem(scene, settings)
+        if problem:
+            self.report({"ERROR"}, problem)
+            return {"CANCELLED"}
+        done = atmosphere.apply_post_effects(scene, settings)
+        switches = (("gated blur", settings.use_blur), ("god rays", settings.use_god_rays))
+        effects = [name for name, on in switches if on] or ["none"]
+        replaced = f"; compositor '{done['replaced'].name}' kept with a fake user" if done["replaced"] else ""
+        keyed = f", sun keyed on {len(done['curve'])} frames" if done["curve"] else ""
+        keyed += "; render engine set to Cycles (the passes are Cycles')" if done["switched_engine"] else ""
+        self.report({"INFO"}, f"Post effects: {', '.join(effects)}{keyed}{replaced}")
+        return {"FINISHED"}
+
+
+def _post_problem(scene, settings):
+    if settings.use_god_rays:
+        if scene.camera is None:
+            return "The scene has no camera: god rays need one to place the sun on screen"
+        if atmosphere.scene_sun(scene) is None:
+            return "No sun lamp: run Add Atmosphere first, or add a sun"
+        try:
+            post.check_rays(settings.samples, settings.ray_density, settings.ray_weight, settings.ray_decay,
+                            settings.ray_exposure)
+        except post.PostError as error:
+            return str(error).capitalize()
+        if not settings.disc_radius > 0:
+            return f"Sun disc must be greater than 0, got {settings.disc_radius:g}"
+    if settings.use_blur and not settings.blur_threshold >= 0:
+        return f"Blur threshold must be 0 or more, got {settings.blur_threshold:g}"
+    return None
+
+
+classes = (SANDSCAPE_OT_add_atmosphere, SANDSCAPE_OT_add_post_effects)
