@@ -11,7 +11,7 @@ import numpy as np
 from mathutils import Vector
 
 from ..core import atmosphere as air
-from ..node_groups import dust_volume
+from ..node_groups import dust_field, dust_volume
 from ..node_groups import helper as h
 
 OBJECT_KEY = "sandscape_object"
@@ -101,14 +101,22 @@ def volume_color(coefficients):
     return (*map(float, ratio), 1.0), strongest
 
 
-def ensure_volume(scene, coefficients, low, high):
-    """Our dust box over low..high with the Rayleigh volume; removed when nothing scatters."""
+def ensure_volume(scene, coefficients, low, high, dust=None):
+    """Our dust box over low..high; removed when nothing scatters.
+
+    dust: None for homogeneous air (cheap), or a dict with "scatter" (1/m of grey,
+    forward-scattering dust, Henyey-Greenstein "anisotropy") and "field" (Dust Field inputs,
+    or None for no wind-lifted patches). The material holds only the branches in use.
+    """
     box = find_object(VOLUME)
-    if float(np.max(coefficients)) <= 0.0:
+    dust = dust or {}
+    if float(np.max(coefficients)) <= 0.0 and not dust.get("scatter", 0.0) > 0.0:
         if box is not None:
-            mesh = box.data
+            mesh, material = box.data, box.active_material
             bpy.data.objects.remove(box)
             bpy.data.meshes.remove(mesh)
+            if material is not None and material.users == 0:
+                bpy.data.materials.remove(material)
         return None
     if box is None:
         mesh = bpy.data.meshes.new("Sandscape Dust")
@@ -120,20 +128,56 @@ def ensure_volume(scene, coefficients, low, high):
         scene.collection.objects.link(box)
         material = bpy.data.materials.new("Sandscape Dust")
         material["sandscape_material"] = "dust"
-        tree = material.node_tree
-        tree.nodes.clear()
-        group = h.add_node(tree, "ShaderNodeGroup", (0, 0), "Dust", node_tree=h.ensure_group(dust_volume))
-        output = h.add_node(tree, "ShaderNodeOutputMaterial", (300, 0))
-        h.link(tree, group.outputs["Volume"], output.inputs["Volume"])
         mesh.materials.append(material)
         box.display_type = "BOUNDS"  # see through it in the viewport
     box.location = tuple((np.asarray(low) + np.asarray(high)) / 2)
     box.scale = tuple(np.asarray(high) - np.asarray(low))
-    group = next(n for n in box.active_material.node_tree.nodes if n.bl_idname == "ShaderNodeGroup")
-    color, density = volume_color(coefficients)
-    group.inputs["Color"].default_value = color
-    group.inputs["Density"].default_value = density
+    _build_volume_material(box.active_material, coefficients, dust, scene)
     return box
+
+
+def _build_volume_material(material, coefficients, dust, scene):
+    tree = material.node_tree
+    if tree.animation_data is not None:
+        tree.animation_data_clear()
+    tree.nodes.clear()
+    output = h.add_node(tree, "ShaderNodeOutputMaterial", (600, 0))
+    factor = None
+    if dust.get("field") is not None:
+        field = h.add_node(tree, "ShaderNodeGroup", (-600, -300), "Dust Field",
+                           node_tree=h.ensure_group(dust_field), inputs=dust["field"])
+        field.inputs["FPS"].default_value = scene.render.fps / scene.render.fps_base
+        driver = field.inputs["Frame"].driver_add("default_value").driver
+        driver.type = "SCRIPTED"
+        driver.expression = "frame"  # a simple expression: evaluated without Python auto-run
+        factor = field.outputs["Factor"]
+
+    def set_density(socket, value, location):
+        if factor is None:
+            socket.default_value = value
+        else:
+            h.link(tree, h.math(tree, "MULTIPLY", factor, value, location, "× Dust Field").outputs[0], socket)
+
+    color, strongest = volume_color(coefficients)
+    shaders = []
+    if strongest > 0:
+        air_node = h.add_node(tree, "ShaderNodeGroup", (0, 100), "Rayleigh",
+                              node_tree=h.ensure_group(dust_volume), inputs={"Color": color})
+        set_density(air_node.inputs["Density"], strongest, (-200, 100))
+        shaders.append(air_node.outputs["Volume"])
+    if dust.get("scatter", 0.0) > 0:
+        grains = h.add_node(tree, "ShaderNodeVolumeScatter", (0, -200), "Dust (Henyey-Greenstein)",
+                            phase="HENYEY_GREENSTEIN", inputs={"Color": (1.0, 1.0, 1.0, 1.0),
+                                                               "Anisotropy": dust["anisotropy"]})
+        set_density(grains.inputs["Density"], dust["scatter"], (-200, -200))
+        shaders.append(grains.outputs[0])
+    volume = shaders[0]
+    if len(shaders) == 2:
+        add = h.add_node(tree, "ShaderNodeAddShader", (300, 0))
+        h.link(tree, shaders[0], add.inputs[0])
+        h.link(tree, shaders[1], add.inputs[1])
+        volume = add.outputs[0]
+    h.link(tree, volume, output.inputs["Volume"])
 
 
 def apply(scene, settings):
@@ -143,7 +187,13 @@ def apply(scene, settings):
     world, replaced = ensure_sky(scene, elevation, azimuth)
     coefficients = air.rayleigh_coefficients(settings.density, tuple(settings.wavelengths))
     low, high = scene_bounds(scene, settings.margin)
-    box = ensure_volume(scene, coefficients, low, high)
+    field = None
+    if settings.use_wind:
+        field = {"Wind": tuple(settings.wind), "Scale": settings.dust_scale, "Coverage": settings.coverage,
+                 "Softness": settings.softness, "Ground": float(low[2] + settings.margin),
+                 "Falloff": settings.falloff}
+    dust = {"scatter": settings.dust_density, "anisotropy": settings.anisotropy, "field": field}
+    box = ensure_volume(scene, coefficients, low, high, dust)
     return {"sun": sun, "world": world, "replaced": replaced, "volume": box, "coefficients": coefficients}
 
 

@@ -64,13 +64,21 @@ class SANDSCAPE_PT_footprints(SandscapeTab, bpy.types.Panel):
         if not settings.use_scene_range:
             layout.prop(settings, "frame_start")
             layout.prop(settings, "frame_end")
-        for heading, names in FOOTPRINT_SECTIONS:
-            layout.label(text=heading)
-            column = layout.column(align=True)
-            for name in names:
-                column.prop(settings, name)
+        _sections(layout, settings, FOOTPRINT_SECTIONS)
         layout.operator("sandscape.emit_footprints", icon="PARTICLES")
         layout.operator("sandscape.paint_footprints", icon="BRUSH_DATA")
+
+
+ATMOSPHERE_SECTIONS = (
+    ("Sun and Air", ("sun_elevation", "sun_azimuth", "density", "wavelengths", "margin")),
+    ("Dust", ("dust_density", "anisotropy", "use_wind", "wind", "dust_scale", "coverage", "softness",
+              "falloff")),
+)
+POST_SECTIONS = (
+    ("Gated Blur", ("use_blur", "blur_threshold")),
+    ("God Rays", ("use_god_rays", "samples", "ray_density", "ray_weight", "ray_decay", "ray_exposure",
+                  "disc_radius", "fade")),
+)
 
 
 class SANDSCAPE_PT_atmosphere(SandscapeTab, bpy.types.Panel):
@@ -79,14 +87,21 @@ class SANDSCAPE_PT_atmosphere(SandscapeTab, bpy.types.Panel):
 
     def draw(self, context):
         layout = self.layout
-        settings = context.scene.sandscape_atmosphere
-        column = layout.column(align=True)
-        for name in ("sun_elevation", "sun_azimuth", "density", "wavelengths", "margin"):
-            column.prop(settings, name)
+        _sections(layout, context.scene.sandscape_atmosphere, ATMOSPHERE_SECTIONS)
         # Where the user sees it: why the dust is a box and not a world volume.
         layout.label(text="Dust fills a box around the scene:", icon="INFO")
         layout.label(text="a world volume would block the sun lamp")
         layout.operator("sandscape.add_atmosphere", icon="LIGHT_SUN")
+        _sections(layout, context.scene.sandscape_post, POST_SECTIONS)
+        layout.operator("sandscape.add_post_effects", icon="NODE_COMPOSITING")
+
+
+def _sections(layout, settings, sections):
+    for heading, names in sections:
+        layout.label(text=heading)
+        column = layout.column(align=True)
+        for name in names:
+            column.prop(settings, name)
 
 
 classes = (SANDSCAPE_PT_sand, SANDSCAPE_PT_footprints, SANDSCAPE_PT_atmosphere)

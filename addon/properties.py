@@ -80,6 +80,25 @@ class SandscapeAtmosphereSettings(bpy.types.PropertyGroup):
     wavelengths: FloatVectorProperty(name="Wavelengths", size=3, default=(680.0, 550.0, 440.0),
                                      soft_min=380.0, soft_max=780.0,
                                      description="Red, green, blue wavelengths in nm for the 1/lambda^4 law")
+    dust_density: FloatProperty(name="Dust", default=0.0, soft_min=0.0, soft_max=1.0, precision=4,
+                                description="Extra grey, forward-scattering dust (Henyey-Greenstein), 1/m; "
+                                "0 leaves it out")
+    anisotropy: FloatProperty(name="Anisotropy", default=0.6, soft_min=-0.9, soft_max=0.95,
+                              description="Henyey-Greenstein g of the dust: above 0 scatters forwards")
+    use_wind: BoolProperty(name="Wind-Lifted Dust", default=True,
+                           description="Patches of dust carried by the wind and thinning with height; off "
+                           "gives a homogeneous volume, far cheaper to render")
+    wind: FloatVectorProperty(name="Wind", size=3, default=(3.0, 1.0, 0.0), subtype="VELOCITY",
+                              description="Wind velocity in metres per second")
+    dust_scale: FloatProperty(name="Patch Size", default=8.0, soft_min=0.1, soft_max=100.0,
+                              subtype="DISTANCE", unit="LENGTH", description="Size of the dust patches")
+    coverage: FloatProperty(name="Coverage", default=0.5, soft_min=0.0, soft_max=1.0, subtype="FACTOR",
+                            description="Share of the ground under dust")
+    softness: FloatProperty(name="Softness", default=0.08, soft_min=0.001, soft_max=0.5,
+                            description="Width of the patch edges")
+    falloff: FloatProperty(name="Height Falloff", default=1.5, soft_min=0.05, soft_max=50.0,
+                           subtype="DISTANCE", unit="LENGTH",
+                           description="Height over which dust thins by 1/e")
     margin: FloatProperty(name="Margin", default=2.0, soft_min=0.0, soft_max=100.0, subtype="DISTANCE",
                           unit="LENGTH", description="How far the dust box reaches beyond the scene")
 

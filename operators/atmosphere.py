@@ -41,6 +41,12 @@ def _problem(settings):
         return "Sun elevation and azimuth must be numbers"
     if not settings.margin >= 0:
         return f"Margin must be 0 or more, got {settings.margin:g}"
+    if not (math.isfinite(settings.dust_density) and settings.dust_density >= 0):
+        return f"Dust must be 0 or more, got {settings.dust_density:g}"
+    if not -1 < settings.anisotropy < 1:
+        return f"Anisotropy must lie in (-1, 1), got {settings.anisotropy:g}"
+    if settings.use_wind and not (settings.dust_scale > 0 and settings.falloff > 0 and settings.softness > 0):
+        return "Patch size, softness and height falloff must be greater than 0"
     return None
 
 

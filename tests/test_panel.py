@@ -82,7 +82,8 @@ def test_atmosphere_panel_shows_its_settings_and_button():
     layout = RecordingLayout()
     bpy.types.SANDSCAPE_PT_atmosphere.draw(types.SimpleNamespace(layout=layout), bpy.context)
     shown = {call[2] for call in layout.calls if call[0] == "prop"}
-    settings = bpy.context.scene.sandscape_atmosphere
-    names = {p.identifier for p in settings.bl_rna.properties} - {"rna_type", "name"}
-    assert shown == names
-    assert [c[1] for c in layout.calls if c[0] == "operator"] == ["sandscape.add_atmosphere"]
+    for settings in (bpy.context.scene.sandscape_atmosphere, bpy.context.scene.sandscape_post):
+        names = {p.identifier for p in settings.bl_rna.properties} - {"rna_type", "name"}
+        assert names <= shown
+    operators = [c[1] for c in layout.calls if c[0] == "operator"]
+    assert operators == ["sandscape.add_atmosphere", "sandscape.add_post_effects"]
