@@ -39,7 +39,8 @@ def build(tree):
     h.link(tree, position.outputs["Position"], carried.inputs[0])
     h.link(tree, drift.outputs[0], carried.inputs[1])
     frequency = h.math(tree, "DIVIDE", 1.0, inputs["Scale"], (-500, -100), "1 / Scale")
-    noise = h.add_node(tree, "ShaderNodeTexNoise", (-300, 100), "Dust Noise", noise_dimensions="3D",
+    # 2D noise over the ground: a patch is a column of dust, not a blob that hides in a projection.
+    noise = h.add_node(tree, "ShaderNodeTexNoise", (-300, 100), "Dust Noise", noise_dimensions="2D",
                        inputs={"Detail": 3.0})
     h.link(tree, carried.outputs[0], noise.inputs["Vector"])
     h.link(tree, frequency.outputs[0], noise.inputs["Scale"])
