@@ -178,10 +178,6 @@ def _build_volume_material(material, coefficients, dust, scene):
         h.link(tree, shaders[1], add.inputs[1])
         volume = add.outputs[0]
     h.link(tree, volume, output.inputs["Volume"])
-    # A new group and driver change the material's dependencies: without this the next
-    # render still shades the material as it was (a uniform density on the first frame).
-    material.update_tag()
-    bpy.context.evaluated_depsgraph_get().update()
 
 
 def apply(scene, settings):

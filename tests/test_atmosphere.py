@@ -116,3 +116,16 @@ def test_bad_input_is_refused_and_changes_nothing(wavelengths, density):
     with pytest.raises(RuntimeError, match="avelengths|ensity"):
         bpy.ops.sandscape.add_atmosphere()
     assert readback.data_snapshot() == before
+
+
+@pytest.mark.parametrize("density, wind", [(1e6, False), (1e6, True), (1e-9, True)])
+def test_extreme_densities_render_finite(density, wind):
+    bpy.ops.mesh.primitive_plane_add(size=4)
+    settings = bpy.context.scene.sandscape_atmosphere
+    settings.density, settings.use_wind, settings.dust_density = density, wind, density
+    assert bpy.ops.sandscape.add_atmosphere() == {"FINISHED"}
+    scene = readback.cycles_scene(resolution=(24, 16), samples=4)
+    scene.cycles.volume_biased = True
+    scenes.camera("PERSP", location=(0.0, -5.0, 1.0), rotation=(math.radians(80), 0.0, 0.0))
+    pixels = readback.render(scene)
+    assert np.isfinite(pixels).all() and pixels.min() >= 0.0
