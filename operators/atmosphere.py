@@ -27,8 +27,9 @@ class SANDSCAPE_OT_add_atmosphere(bpy.types.Operator):
         volume = f"dust box '{done['volume'].name}'" if done["volume"] else "no volume (density 0)"
         replaced = (f"; world '{done['replaced'].name}' kept with a fake user (switch back in World "
                     "properties)" if done["replaced"] else "")
+        marching = "; volume ray marching on (biased, faster)" if context.scene.cycles.volume_biased else ""
         self.report({"INFO"}, f"Sun '{done['sun'].name}', sky '{done['world'].name}', {volume}, "
-                    f"scattering {beta} 1/m{replaced}")
+                    f"scattering {beta} 1/m{replaced}{marching}")
         return {"FINISHED"}
 
 

@@ -129,3 +129,29 @@ def test_extreme_densities_render_finite(density, wind):
     scenes.camera("PERSP", location=(0.0, -5.0, 1.0), rotation=(math.radians(80), 0.0, 0.0))
     pixels = readback.render(scene)
     assert np.isfinite(pixels).all() and pixels.min() >= 0.0
+
+
+def dust_material():
+    box = next(o for o in bpy.data.objects if o.get("sandscape_object") == "dust_volume")
+    return box.active_material
+
+
+def test_wind_dust_is_frame_driven_and_absent_when_off():
+    bpy.ops.mesh.primitive_plane_add(size=4)
+    settings = bpy.context.scene.sandscape_atmosphere
+    settings.use_wind, settings.dust_density = True, 0.0
+    bpy.ops.sandscape.add_atmosphere()
+    tree = dust_material().node_tree
+    field = next(n for n in tree.nodes if n.label == "Dust Field")
+    driver = tree.animation_data.drivers[0].driver
+    assert driver.expression == "frame" and driver.is_simple_expression
+    bpy.context.scene.frame_set(42)
+    assert field.inputs["Frame"].default_value == 42.0
+    assert bpy.context.scene.cycles.volume_biased  # ray marching for the noise density
+    assert not [n for n in tree.nodes if n.bl_idname == "ShaderNodeVolumeScatter"]  # no dust: no HG node
+    settings.use_wind, settings.dust_density = False, 0.01
+    bpy.ops.sandscape.add_atmosphere()
+    tree = dust_material().node_tree
+    assert not [n for n in tree.nodes if n.label == "Dust Field"]  # homogeneous: no field at all
+    assert tree.animation_data is None or not tree.animation_data.drivers
+    assert [n.phase for n in tree.nodes if n.bl_idname == "ShaderNodeVolumeScatter"] == ["HENYEY_GREENSTEIN"]
