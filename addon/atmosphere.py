@@ -11,7 +11,8 @@ import numpy as np
 from mathutils import Vector
 
 from ..core import atmosphere as air
-from ..node_groups import dust_field, dust_volume
+from ..core import post
+from ..node_groups import dust_field, dust_volume, post_effects
 from ..node_groups import helper as h
 
 OBJECT_KEY = "sandscape_object"
@@ -216,9 +217,6 @@ def key_sun(scene, tree, sun, fade):
 
     Keyframes, not a driver: a render farm needs no scripts. Returns [(frame, u, v, intensity)].
     """
-    from ..core import post
-    from ..node_groups import post_effects
-
     sun_node = post_effects.sun_key_node(tree)
     rays = post_effects.rays_node(tree)
     if tree.animation_data is not None:
@@ -245,8 +243,6 @@ def key_sun(scene, tree, sun, fade):
 
 def apply_post_effects(scene, settings):
     """Our compositor tree on the scene, built for the settings; a user's tree is kept aside."""
-    from ..node_groups import post_effects
-
     current = scene.compositing_node_group
     ours = next((g for g in bpy.data.node_groups if g.get(post_effects.TREE_KEY)), None)
     replaced = None
