@@ -6,10 +6,10 @@ attached to Blender types); they run after its classes are registered, and befor
 
 import bpy
 
-from ..operators import atmosphere, footprints, sand_material
+from ..operators import atmosphere, demo, footprints, sand_material
 from . import panels, properties
 
-MODULES = (properties, sand_material, footprints, atmosphere, panels)
+MODULES = (properties, sand_material, footprints, atmosphere, demo, panels)
 
 
 def register():

@@ -30,9 +30,15 @@ def build(tree, settings):
     output = h.add_node(tree, "NodeGroupOutput", (900, 0))
     image = layers.outputs["Image"]
     if settings.use_blur:
-        volume = h.add_node(tree, "ShaderNodeVectorMath", (-900, -300), "Scattered Light", operation="ADD")
-        h.link(tree, layers.outputs["Volume Direct"], volume.inputs[0])
-        h.link(tree, layers.outputs["Volume Indirect"], volume.inputs[1])
+        passes = h.add_node(tree, "ShaderNodeVectorMath", (-1000, -300), "Volume Passes", operation="ADD")
+        h.link(tree, layers.outputs["Volume Direct"], passes.inputs[0])
+        h.link(tree, layers.outputs["Volume Indirect"], passes.inputs[1])
+        # The passes can exceed the combined image in a pixel (751 negative pixels in a demo
+        # frame; indirect sample clamping is a likely cause): never take out more than it holds.
+        volume = h.add_node(tree, "ShaderNodeVectorMath", (-900, -300), "Scattered Light",
+                            operation="MINIMUM")
+        h.link(tree, passes.outputs[0], volume.inputs[0])
+        h.link(tree, image, volume.inputs[1])
         blur = h.add_node(tree, "CompositorNodeGroup", (-650, -300), "Gated Blur",
                           node_tree=h.ensure_group(gated_blur), inputs={"Threshold": settings.blur_threshold})
         h.link(tree, volume.outputs[0], blur.inputs["Image"])

@@ -72,6 +72,10 @@ class SANDSCAPE_OT_add_post_effects(bpy.types.Operator):
         keyed = f", sun keyed on {len(done['curve'])} frames" if done["curve"] else ""
         keyed += "; render engine set to Cycles (the passes are Cycles')" if done["switched_engine"] else ""
         self.report({"INFO"}, f"Post effects: {', '.join(effects)}{keyed}{replaced}")
+        if settings.use_blur and scene.cycles.use_denoising:
+            # The volume passes are not denoised: the combined image minus a noisy pass shows specks.
+            self.report({"WARNING"}, "Render denoising is on: the gated blur swaps noisy scattered light "
+                        "into a denoised image. Switch denoising off, or the blur")
         return {"FINISHED"}
 
 
