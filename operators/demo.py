@@ -1,8 +1,9 @@
 """Operators for the desert demo."""
 
 import bpy
+from bpy.props import BoolProperty
 
-from ..addon import demo
+from ..addon import demo, optimize
 
 
 class SANDSCAPE_OT_build_demo_scene(bpy.types.Operator):
@@ -22,4 +23,26 @@ class SANDSCAPE_OT_build_demo_scene(bpy.types.Operator):
         return {"FINISHED"}
 
 
-classes = (SANDSCAPE_OT_build_demo_scene,)
+class SANDSCAPE_OT_optimize_scene(bpy.types.Operator):
+    """Switch off what does not reach the image: empty volumes, idle adaptive subdivision, dark glints,
+    god rays with the sun out of view, idle volume bounces, passes nothing reads"""
+
+    bl_idname = "sandscape.optimize_scene"
+    bl_label = "Optimize Scene"
+    bl_options = {"REGISTER", "UNDO"}
+
+    dry_run: BoolProperty(name="Dry Run", default=False,
+                          description="Only list what would be switched off; change nothing")
+
+    def execute(self, context):
+        found = optimize.decisions(context.scene)
+        for decision in found:
+            if not self.dry_run:
+                decision.apply()
+            self.report({"INFO"}, ("would: " if self.dry_run else "") + decision.message)
+        verb = "Would switch off" if self.dry_run else "Switched off"
+        self.report({"INFO"}, f"{verb} {len(found)} thing(s)" if found else "Nothing to switch off")
+        return {"FINISHED"}
+
+
+classes = (SANDSCAPE_OT_build_demo_scene, SANDSCAPE_OT_optimize_scene)

@@ -1,0 +1,236 @@
+"""Find what does not contribute to the image, and switch it off.
+
+Each finding is a Decision: one line for the report and a function that applies it.
+Nothing is deleted: objects are hidden from renders, modifiers and passes switched off, links
+rerouted, so a decision is easy to undo by hand (and Ctrl+Z undoes the whole operator).
+"""
+
+import numpy as np
+from bpy_extras import anim_utils
+from mathutils import Vector
+
+from ..node_groups import post_effects, sand_material
+from . import atmosphere
+
+VOLUME_SHADERS = {"ShaderNodeVolumeScatter", "ShaderNodeVolumeAbsorption", "ShaderNodeVolumePrincipled",
+                  "ShaderNodeVolumeCoefficients"}
+
+
+class Decision:
+    __slots__ = ("message", "apply")
+
+    def __init__(self, message, apply):
+        self.message, self.apply = message, apply
+
+
+def decisions(scene):
+    found = []
+    for check in (_empty_volumes, _idle_adaptive_subdivision, _dark_glints, _idle_god_rays):
+        found.extend(check(scene))
+    found.extend(_idle_volume_bounces(scene, found))
+    found.extend(_unused_passes(scene, found))
+    return found
+
+
+def _renderable(scene):
+    return [obj for obj in scene.objects if not obj.hide_render and obj.type in {"MESH", "VOLUME", "CURVE"}]
+
+
+def _volume_output(tree):
+    """The active Material/World output's Volume socket when it is linked, else None."""
+    if tree is None:
+        return None
+    for node in tree.nodes:
+        if node.bl_idname in {"ShaderNodeOutputMaterial", "ShaderNodeOutputWorld"} and node.is_active_output:
+            socket = node.inputs["Volume"]
+            return socket if socket.is_linked else None
+    return None
+
+
+def _volume_density_zero(material):
+    """True when a volume-only material is fed only by volume shaders of unlinked density 0."""
+    tree = material.node_tree if material else None
+    volume = _volume_output(tree)
+    if volume is None or volume.node.inputs["Surface"].is_linked:
+        return False
+    densities = [node.inputs.get("Density") for node in _upstream(volume)
+                 if node.bl_idname in VOLUME_SHADERS or node.bl_idname == "ShaderNodeGroup"]
+    return bool(densities) and all(
+        socket is not None and not socket.is_linked and socket.default_value == 0 for socket in densities)
+
+
+def _upstream(socket):
+    nodes, stack = [], [link.from_node for link in socket.links]
+    while stack:
+        node = stack.pop()
+        nodes.append(node)
+        if node.bl_idname in {"ShaderNodeAddShader", "ShaderNodeMixShader"}:
+            stack.extend(link.from_node for s in node.inputs for link in s.links)
+    return nodes
+
+
+def _empty_volumes(scene):
+    for obj in _renderable(scene):
+        material = obj.active_material
+        if obj.type == "MESH" and _volume_density_zero(material):
+            yield Decision(f"'{obj.name}': a volume of density 0 scatters nothing; hidden from renders",
+                           lambda o=obj: setattr(o, "hide_render", True))
+
+
+def _displaces(obj):
+    for slot in obj.material_slots:
+        material = slot.material
+        if material is None or material.node_tree is None or material.displacement_method == "BUMP":
+            continue
+        if any(n.bl_idname == "ShaderNodeOutputMaterial" and n.inputs["Displacement"].is_linked
+               for n in material.node_tree.nodes):
+            return True
+    return False
+
+
+def _seen_by_camera(scene, obj):
+    """Whether the camera may see the object's box at the start, middle or end frame.
+
+    Conservative: a box partly behind the camera counts as seen, and so does any overlap of
+    the projected corners' bounds with the frame.
+    """
+    camera = scene.camera
+    if camera is None:
+        return True
+    kept = scene.frame_current
+    try:
+        for frame in sorted({scene.frame_start, (scene.frame_start + scene.frame_end) // 2, scene.frame_end}):
+            scene.frame_set(frame)
+            corners = np.array([obj.matrix_world @ Vector(c) for c in obj.bound_box])
+            clip = np.c_[corners, np.ones(8)] @ atmosphere.view_projection(scene, camera).T
+            w = clip[:, 3]
+            if (w > 0).all():
+                ndc = clip[:, :2] / w[:, None]
+                if (ndc.min(0) <= 1).all() and (ndc.max(0) >= -1).all():
+                    return True
+            elif (w > 0).any():
+                return True
+    finally:
+        scene.frame_set(kept)
+    return False
+
+
+def _idle_adaptive_subdivision(scene):
+    for obj in _renderable(scene):
+        for modifier in obj.modifiers:
+            if modifier.type != "SUBSURF" or not modifier.use_adaptive_subdivision:
+                continue
+            if not _displaces(obj):
+                reason = "its material does not displace"
+            elif not _seen_by_camera(scene, obj):
+                reason = "the camera never sees it"
+            else:
+                continue
+            yield Decision(f"'{obj.name}': adaptive subdivision off, {reason}",
+                           lambda m=modifier: setattr(m, "use_adaptive_subdivision", False))
+
+
+def _dark_glints(scene):
+    seen = set()
+    for obj in _renderable(scene):
+        material = sand_material.find_sand_material(obj)
+        node = sand_material.glint_node(material)
+        if node is None or material.name in seen or node.inputs["Strength"].default_value != 0:
+            continue
+        seen.add(material.name)
+        tree = material.node_tree
+        add = next((n for n in tree.nodes if n.bl_idname == "ShaderNodeAddShader"), None)
+        if add is None or not add.outputs[0].is_linked:
+            continue
+        yield Decision(f"'{material.name}': glint strength 0; the glint branch is bypassed",
+                       lambda t=tree, a=add: _bypass(t, a))
+
+
+def _bypass(tree, add):
+    """Route the Add Shader's first input straight to where its output went."""
+    source = add.inputs[0].links[0].from_socket
+    for link in list(add.outputs[0].links):
+        tree.links.new(source, link.to_socket)
+
+
+def _idle_god_rays(scene):
+    tree = scene.compositing_node_group
+    if tree is None or not tree.get(post_effects.TREE_KEY):
+        return
+    rays = post_effects.rays_node(tree)
+    if rays is None:
+        return
+    reason = None
+    if rays.inputs["Exposure"].default_value == 0 or rays.inputs["Weight"].default_value == 0:
+        reason = "their strength is 0"
+    elif _always_zero(tree, rays):
+        reason = "the sun is out of view on every frame"
+    if reason:
+        yield Decision(f"God rays removed from the compositor: {reason}", lambda s=scene: _drop_rays(s))
+
+
+def _always_zero(tree, rays):
+    action = tree.animation_data.action if tree.animation_data else None
+    if action is None:
+        return rays.inputs["Intensity"].default_value == 0
+    slot = tree.animation_data.action_slot
+    bag = anim_utils.action_get_channelbag_for_slot(action, slot)
+    path = rays.inputs["Intensity"].path_from_id("default_value")
+    curve = next((c for c in bag.fcurves if c.data_path == path), None)
+    if curve is None:
+        return rays.inputs["Intensity"].default_value == 0
+    values = np.empty(len(curve.keyframe_points) * 2, np.float32)
+    curve.keyframe_points.foreach_get("co", values)
+    return bool((values[1::2] == 0).all())
+
+
+def _drop_rays(scene):
+    scene.sandscape_post.use_god_rays = False
+    atmosphere.apply_post_effects(scene, scene.sandscape_post)
+
+
+def _idle_volume_bounces(scene, found):
+    if scene.cycles.volume_bounces == 0:
+        return
+    hidden = {d.message.split("'")[1] for d in found if "volume of density 0" in d.message}
+    volumes = [obj for obj in _renderable(scene) if obj.name not in hidden and obj.active_material is not None
+               and _volume_output(obj.active_material.node_tree) is not None]
+    world_volume = scene.world is not None and _volume_output(scene.world.node_tree) is not None
+    if not volumes and not world_volume:
+        yield Decision(f"Volume bounces {scene.cycles.volume_bounces} -> 0: no volume is left",
+                       lambda s=scene: setattr(s.cycles, "volume_bounces", 0))
+
+
+PASSES = {  # Render Layers output -> (owner path, property)
+    "Volume Direct": ("cycles", "use_pass_volume_direct"),
+    "Volume Indirect": ("cycles", "use_pass_volume_indirect"),
+    "Environment": ("", "use_pass_environment"),
+    "Depth": ("", "use_pass_z"),
+    "Mist": ("", "use_pass_mist"),
+    "Normal": ("", "use_pass_normal"),
+    "Position": ("", "use_pass_position"),
+    "Emission": ("", "use_pass_emit"),
+    "Ambient Occlusion": ("", "use_pass_ambient_occlusion"),
+    "Diffuse Direct": ("", "use_pass_diffuse_direct"),
+    "Glossy Direct": ("", "use_pass_glossy_direct"),
+}
+
+
+def _unused_passes(scene, found):
+    if any(d.message.startswith("God rays removed") for d in found):
+        return  # the rebuilt tree decides its own passes
+    tree = scene.compositing_node_group
+    used = set()
+    if tree is not None and scene.render.use_compositing:
+        for node in tree.nodes:
+            if node.bl_idname == "CompositorNodeRLayers":
+                used |= {socket.name for socket in node.outputs if socket.is_linked}
+    if any(node.bl_idname == "CompositorNodeOutputFile" for node in (tree.nodes if tree else ())):
+        return  # file outputs may write any pass
+    for layer in scene.view_layers:
+        for name, (owner, prop) in PASSES.items():
+            holder = getattr(layer, owner) if owner else layer
+            if getattr(holder, prop, False) and name not in used:
+                yield Decision(f"View layer '{layer.name}': pass '{name}' is rendered but nothing "
+                               "reads it; off", lambda h=holder, p=prop: setattr(h, p, False))
+

@@ -1,0 +1,93 @@
+"""bpy.ops.sandscape.optimize_scene: finds what does not reach the image, lists it on a dry run,
+switches it off otherwise, and leaves the demo's working parts alone."""
+
+import math
+
+import bpy
+import pytest
+
+
+def messages(capture):
+    return [line for line in capture if line]
+
+
+@pytest.fixture
+def wasteful_demo():
+    """The demo plus things that cost render time and add nothing."""
+    bpy.ops.sandscape.build_demo_scene()
+    scene = bpy.context.scene
+    bpy.ops.mesh.primitive_cube_add(size=2, location=(0, 0, 5))
+    fog = bpy.context.active_object
+    fog.name = "Empty Fog"
+    material = bpy.data.materials.new("Empty Fog")
+    tree = material.node_tree
+    tree.nodes.clear()
+    scatter = tree.nodes.new("ShaderNodeVolumeScatter")
+    scatter.inputs["Density"].default_value = 0.0
+    tree.links.new(scatter.outputs[0], tree.nodes.new("ShaderNodeOutputMaterial").inputs["Volume"])
+    fog.data.materials.append(material)
+    bpy.ops.mesh.primitive_plane_add(size=4, location=(0, 0, 0.5))
+    slab = bpy.context.active_object
+    slab.name = "Flat Slab"
+    dicing = slab.modifiers.new("Subdivision", "SUBSURF")
+    dicing.use_adaptive_subdivision = True
+    scene.view_layers[0].use_pass_z = True
+    scene.cycles.volume_bounces = 2
+    return scene, fog, slab, dicing
+
+
+def run(dry_run):
+    cls = bpy.types.SANDSCAPE_OT_optimize_scene
+    reports = []
+
+    class Fake:
+        def report(self, kind, text):
+            reports.append(text)
+
+    fake = Fake()
+    fake.dry_run = dry_run
+    assert cls.execute(fake, bpy.context) == {"FINISHED"}
+    return reports
+
+
+def test_dry_run_lists_and_changes_nothing(wasteful_demo):
+    scene, fog, slab, dicing = wasteful_demo
+    lines = run(dry_run=True)
+    assert any("Empty Fog" in line and "density 0" in line for line in lines)
+    assert any("Flat Slab" in line and "does not displace" in line for line in lines)
+    assert any("pass 'Depth'" in line for line in lines)
+    assert all(line.startswith("would: ") for line in lines[:-1])
+    assert not fog.hide_render and dicing.use_adaptive_subdivision and scene.view_layers[0].use_pass_z
+
+
+def test_switches_off_only_what_does_not_contribute(sandscape, wasteful_demo):
+    scene, fog, slab, dicing = wasteful_demo
+    run(dry_run=False)
+    assert fog.hide_render and not dicing.use_adaptive_subdivision and not scene.view_layers[0].use_pass_z
+    # The demo's own parts contribute and stay: the displacing patch, the dust, the passes the tree reads.
+    patch = next(o for o in bpy.data.objects if o.get("sandscape_object") == "footprint_patch")
+    assert patch.modifiers[0].use_adaptive_subdivision
+    dust = next(o for o in bpy.data.objects if o.get("sandscape_object") == "dust_volume")
+    assert not dust.hide_render and scene.cycles.volume_bounces == 2
+    assert scene.view_layers[0].cycles.use_pass_volume_direct and scene.view_layers[0].use_pass_environment
+    assert run(dry_run=False)[-1] == "Nothing to switch off"  # a second run finds nothing
+
+
+def test_dark_glints_idle_rays_and_bounces(sandscape, wasteful_demo):
+    scene, fog, slab, dicing = wasteful_demo
+    terrain = scene.sandscape_footprints.terrain
+    material = terrain.active_material
+    sand = sandscape.node_groups.sand_material
+    sand.glint_node(material).inputs["Strength"].default_value = 0.0
+    scene.sandscape_atmosphere.sun_azimuth = math.radians(270.0)  # behind the walker and the camera
+    scene.sandscape_atmosphere.density = scene.sandscape_atmosphere.dust_density = 0.0  # no dust box
+    bpy.ops.sandscape.add_atmosphere()
+    bpy.ops.sandscape.add_post_effects()
+    lines = run(dry_run=False)
+    assert any("glint strength 0" in line for line in lines)
+    assert any("God rays removed" in line and "out of view" in line for line in lines)
+    assert any("Volume bounces 2 -> 0" in line for line in lines)
+    output = next(n for n in material.node_tree.nodes if n.bl_idname == "ShaderNodeOutputMaterial")
+    assert output.inputs["Surface"].links[0].from_node.bl_idname == "ShaderNodeBsdfPrincipled"
+    assert sandscape.node_groups.post_effects.rays_node(scene.compositing_node_group) is None
+    assert scene.cycles.volume_bounces == 0
