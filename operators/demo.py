@@ -36,10 +36,20 @@ class SANDSCAPE_OT_optimize_scene(bpy.types.Operator):
 
     def execute(self, context):
         found = optimize.decisions(context.scene)
-        for decision in found:
-            if not self.dry_run:
-                decision.apply()
-            self.report({"INFO"}, ("would: " if self.dry_run else "") + decision.message)
+        if self.dry_run:
+            for decision in found:
+                self.report({"INFO"}, "would: " + decision.message)
+        else:
+            # One decision can free another (a rebuilt compositor reads fewer passes): repeat.
+            batch, found = found, []
+            for _ in range(3):
+                for decision in batch:
+                    decision.apply()
+                    self.report({"INFO"}, decision.message)
+                found += batch
+                batch = optimize.decisions(context.scene)
+                if not batch:
+                    break
         verb = "Would switch off" if self.dry_run else "Switched off"
         self.report({"INFO"}, f"{verb} {len(found)} thing(s)" if found else "Nothing to switch off")
         return {"FINISHED"}
