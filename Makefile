@@ -22,9 +22,13 @@ test: lint
 	$(PY) -m pytest
 
 bench: $(STAMP)
+	$(PY) -m pip install --disable-pip-version-check -q -r requirements-bench.txt
 	$(PY) bench/glints.py
 	$(PY) bench/footprints.py
 	$(PY) bench/footprint_dicing.py
+	$(PY) bench/atmosphere.py
+	$(PY) bench/optimize.py
+	$(PY) bench/quality.py
 
 clean:
 	rm -rf out build .pytest_cache .ruff_cache

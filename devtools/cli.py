@@ -69,6 +69,8 @@ def render(args):
     if args.width and args.height:
         scene.render.resolution_x, scene.render.resolution_y = args.width, args.height
         scene.render.resolution_percentage = 100
+    if args.preset:
+        bpy.ops.sandscape.apply_quality_preset(preset=args.preset.upper())
     if args.samples is not None:
         scene.cycles.samples = args.samples
     output = pathlib.Path(args.output).resolve()
@@ -107,7 +109,9 @@ def parser():
     frames.add_argument("--frame", type=int, action="append", help="frame to render (repeatable)")
     frames.add_argument("--width", type=int, help="override the resolution (with --height)")
     frames.add_argument("--height", type=int)
-    frames.add_argument("--samples", type=int, help="override the Cycles samples")
+    frames.add_argument("--preset", choices=("draft", "preview", "final"),
+                        help="a measured quality preset (bench/quality.py)")
+    frames.add_argument("--samples", type=int, help="override the Cycles samples (after any preset)")
     frames.set_defaults(run=render)
     timing = commands.add_parser("bench", help="run bench/NAME.py")
     timing.add_argument("name", help="glints, footprints, footprint_dicing, atmosphere")

@@ -1,5 +1,6 @@
 """`make demo`: build the desert demo headless, save demo.blend, render out/demo.png and a few
-animation frames that show the prints appearing as the walker passes.
+animation frames that show the prints appearing as the walker passes. The still renders at the
+preview preset, the animation at the draft preset and half the size.
 
 demo.blend is generated here and nowhere else (never edit it by hand); tests/test_demo_blend.py
 checks that the committed file matches a fresh build.
@@ -39,7 +40,7 @@ def main(argv=None):
     parser.add_argument("--output", default="out/demo.png", help="the still to render")
     parser.add_argument("--width", type=int, default=640)
     parser.add_argument("--height", type=int, default=360)
-    parser.add_argument("--samples", type=int, default=64)
+    parser.add_argument("--samples", type=int, help="override the preview preset's samples for the still")
     parser.add_argument("--frame", type=int, default=200, help="frame of the still")
     parser.add_argument("--no-animation", action="store_true", help="skip the animation frames")
     args = parser.parse_args(argv)
@@ -65,17 +66,20 @@ def main(argv=None):
     scene.render.image_settings.file_format = "PNG"
     scene.render.resolution_x, scene.render.resolution_y = args.width, args.height
     scene.render.resolution_percentage = 100
-    scene.cycles.samples = args.samples
+    bpy.ops.sandscape.apply_quality_preset(preset="PREVIEW")
+    if args.samples:
+        scene.cycles.samples = args.samples
     scene.frame_set(args.frame)
     scene.render.filepath = str(output)
     mark = time.perf_counter()
     bpy.ops.render.render(write_still=True)
-    stages.append((f"render {args.width}x{args.height} at {args.samples} spp", time.perf_counter() - mark))
+    still = f"render {args.width}x{args.height} at {scene.cycles.samples} spp"
+    stages.append((still, time.perf_counter() - mark))
 
     if not args.no_animation:
         mark = time.perf_counter()
         scene.render.resolution_x, scene.render.resolution_y = args.width // 2, args.height // 2
-        scene.cycles.samples = max(args.samples // 4, 1)
+        bpy.ops.sandscape.apply_quality_preset(preset="DRAFT")
         for frame in ANIMATION_FRAMES:
             scene.frame_set(frame)
             scene.render.filepath = str(output.with_name(f"{output.stem}_{frame:04d}{output.suffix}"))
