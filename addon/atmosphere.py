@@ -17,6 +17,9 @@ from ..node_groups import helper as h
 
 OBJECT_KEY = "sandscape_object"
 WORLD_KEY = "sandscape_world"
+# Bump when build_sky_nodes changes: a world built by an older version is rebuilt.
+WORLD_NODES_KEY = "sandscape_sky_nodes"
+WORLD_NODES_VERSION = 2
 SUN, VOLUME = "sun", "dust_volume"
 
 
@@ -49,6 +52,30 @@ def ensure_sun(scene, elevation, azimuth):
     return sun
 
 
+def build_sky_nodes(tree):
+    """Sky light without a sun disc for every ray but camera rays, which see the disc as well.
+
+    The lamp lights the scene; a disc in the lighting sky would light it twice, yet without
+    one the camera would see no sun at all.
+    """
+    tree.nodes.clear()
+    lighting = h.add_node(tree, "ShaderNodeTexSky", (-400, 100), "Sky", sky_type="MULTIPLE_SCATTERING",
+                          sun_disc=False)
+    seen = h.add_node(tree, "ShaderNodeTexSky", (-400, -200), "Sky with Sun Disc",
+                      sky_type="MULTIPLE_SCATTERING", sun_disc=True)
+    lit = h.add_node(tree, "ShaderNodeBackground", (-100, 100))
+    shown = h.add_node(tree, "ShaderNodeBackground", (-100, -200))
+    ray = h.add_node(tree, "ShaderNodeLightPath", (-100, 400))
+    mix = h.add_node(tree, "ShaderNodeMixShader", (150, 0), "Camera Sees the Disc")
+    output = h.add_node(tree, "ShaderNodeOutputWorld", (350, 0))
+    h.link(tree, lighting.outputs["Color"], lit.inputs["Color"])
+    h.link(tree, seen.outputs["Color"], shown.inputs["Color"])
+    h.link(tree, ray.outputs["Is Camera Ray"], mix.inputs["Fac"])
+    h.link(tree, lit.outputs[0], mix.inputs[1])
+    h.link(tree, shown.outputs[0], mix.inputs[2])
+    h.link(tree, mix.outputs[0], output.inputs["Surface"])
+
+
 def ensure_sky(scene, elevation, azimuth):
     """Our world with a Sky Texture whose sun matches the lamp; returns (world, replaced world or None).
 
@@ -62,22 +89,16 @@ def ensure_sky(scene, elevation, azimuth):
         if world is None:
             world = bpy.data.worlds.new("Sandscape Sky")
             world[WORLD_KEY] = "sky"
-            tree = world.node_tree
-            tree.nodes.clear()
-            sky = h.add_node(tree, "ShaderNodeTexSky", (-400, 0), "Sky", sky_type="MULTIPLE_SCATTERING")
-            background = h.add_node(tree, "ShaderNodeBackground", (-100, 0))
-            output = h.add_node(tree, "ShaderNodeOutputWorld", (200, 0))
-            h.link(tree, sky.outputs["Color"], background.inputs["Color"])
-            h.link(tree, background.outputs[0], output.inputs["Surface"])
         if replaced is not None:
             replaced.use_fake_user = True
             world["replaced_world"] = replaced.name
         scene.world = world
-    sky = next(n for n in world.node_tree.nodes if n.bl_idname == "ShaderNodeTexSky")
-    # The lamp lights the scene; a sun disc in the sky as well would light it twice.
-    sky.sun_disc = False
-    sky.sun_elevation = elevation
-    sky.sun_rotation = azimuth % (2 * math.pi)
+    if world.get(WORLD_NODES_KEY) != WORLD_NODES_VERSION:
+        build_sky_nodes(world.node_tree)
+        world[WORLD_NODES_KEY] = WORLD_NODES_VERSION
+    for sky in (n for n in world.node_tree.nodes if n.bl_idname == "ShaderNodeTexSky"):
+        sky.sun_elevation = elevation
+        sky.sun_rotation = azimuth % (2 * math.pi)
     return world, replaced
 
 

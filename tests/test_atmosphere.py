@@ -4,6 +4,7 @@ sun where the lamp points, re-runs, a user's world kept, bad input refused."""
 import math
 
 import bpy
+import mathutils
 import numpy as np
 import pytest
 
@@ -77,6 +78,35 @@ def test_sky_sun_matches_the_lamp():
     seen = mirror_ball_sun_direction()
     assert math.degrees(math.acos(min(1.0, float(seen @ lamp)))) < 1.0
     assert lamp == pytest.approx(air.sun_direction(math.radians(35), math.radians(60)), abs=1e-6)
+
+
+def test_the_camera_sees_the_sun_disc_and_the_lighting_does_not():
+    settings = bpy.context.scene.sandscape_atmosphere
+    settings.sun_elevation, settings.sun_azimuth, settings.density = math.radians(20), math.radians(60), 0.0
+    bpy.ops.sandscape.add_atmosphere()
+    scene = readback.cycles_scene(resolution=(33, 33), samples=16)
+    towards_sun = mathutils.Vector(air.sun_direction(math.radians(20), math.radians(60)))
+    # 200 mm: 0.27 degrees a pixel, so the 0.545-degree disc covers about two pixels at the centre.
+    scenes.camera("PERSP", location=(0.0, 0.0, 0.0), lens=200.0,
+                  rotation=towards_sun.to_track_quat("-Z", "Y").to_euler())
+    brightness = readback.render(scene)[..., :3].sum(-1)
+    row, column = np.unravel_index(np.argmax(brightness), brightness.shape)
+    assert abs(row - 16) <= 1 and abs(column - 16) <= 1, (row, column)
+    assert brightness.max() > 100 * np.median(brightness)
+
+    # Seen from above, a grey ground lit by the sky renders the same, within the noise, with the
+    # disc branch cut out. Were the disc lighting it as well, the ground would be far brighter.
+    bpy.data.objects.remove(scene.camera)
+    readback.uv_plane(50.0, "Ground")
+    scenes.camera("ORTHO", location=(0.0, 0.0, 10.0), ortho_scale=4.0)
+    with_disc = readback.render(scene)
+    tree = scene.world.node_tree
+    lighting = next(n for n in tree.nodes if n.type == "BACKGROUND"
+                    and not n.inputs["Color"].links[0].from_node.sun_disc)
+    tree.links.new(lighting.outputs[0], next(n for n in tree.nodes if n.type == "OUTPUT_WORLD").inputs[0])
+    without = readback.render(scene)
+    ratio = with_disc[..., :3].mean() / without[..., :3].mean()
+    assert abs(ratio - 1.0) < 0.03, ratio  # 1089 pixels at 16 spp: the noise in the mean is under 1 %
 
 
 def test_rerun_updates_and_density_zero_removes_the_volume():

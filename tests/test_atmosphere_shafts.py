@@ -37,8 +37,8 @@ def shaft_scene():
         for key, value in atmosphere.items():
             setattr(settings, key, value)
         assert bpy.ops.sandscape.add_atmosphere() == {"FINISHED"}
-        background = next(n for n in bpy.context.scene.world.node_tree.nodes if n.type == "BACKGROUND")
-        background.inputs["Strength"].default_value = 0.0
+        for background in (n for n in bpy.context.scene.world.node_tree.nodes if n.type == "BACKGROUND"):
+            background.inputs["Strength"].default_value = 0.0  # the sun alone lights the dust
         scene = readback.cycles_scene(resolution=(SIZE, SIZE), samples=32)
         scene.cycles.volume_biased = True  # ray marching: a noise density renders in a fraction of the time
         scenes.camera("ORTHO", location=(0.0, 0.0, 10.0), ortho_scale=16.0)
