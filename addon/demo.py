@@ -10,7 +10,7 @@ from ..core import dunes
 TERRAIN_SIZE = (120.0, 60.0)  # wide enough that the camera never sees past the dunes
 TERRAIN_SPACING = 0.25
 FRAMES = (1, 240)
-SUN = (math.radians(9.0), math.radians(90.0))  # low, and ahead of the walker (+X)
+SUN = (math.radians(6.0), math.radians(70.0))  # low, ahead of the walker and in view
 CAMERA_OFFSET = (-7.0, -4.0, 2.2)  # behind and beside the walker, metres
 SAND = {"threshold": 0.985, "glint_size": 0.012, "facing_power": 4.0, "strength": 60.0, "seed": 1}
 
@@ -36,8 +36,10 @@ def dune_terrain(collection):
 def follow_camera(scene, walker):
     """A camera that keeps its offset from the walker and looks at it (constraints, no scripts)."""
     camera = bpy.data.objects.new("Demo Camera", bpy.data.cameras.new("Demo Camera"))
-    camera.data.lens = 28.0
+    camera.data.lens = 24.0
     camera.data.clip_end = 500.0
+    # Lens shift, not a tilt: the walker stays in the lower half and the low sun comes into frame.
+    camera.data.shift_x, camera.data.shift_y = 0.1, 0.08
     scene.collection.objects.link(camera)
     scene.camera = camera
     camera.location = CAMERA_OFFSET
@@ -70,12 +72,17 @@ def build(context):
     bpy.ops.sandscape.paint_footprints()
     air = scene.sandscape_atmosphere
     air.sun_elevation, air.sun_azimuth = SUN
-    air.density, air.dust_density, air.margin = 0.004, 0.01, 1.0
+    # A wide margin carries the haze to the horizon: a box that ended at the dunes showed the
+    # sky's dark ground beyond them.
+    air.density, air.dust_density, air.margin = 0.004, 0.01, 150.0
     bpy.ops.sandscape.add_atmosphere()
     camera = follow_camera(scene, footprints.walker)
+    # Exposure -3 below divides the frame by 8; the rays' exposure of 8 keeps them visible.
+    scene.sandscape_post.ray_exposure = 8.0
     bpy.ops.sandscape.add_post_effects()
     sun = next(o for o in scene.objects if o.type == "LIGHT")
-    sun.data.energy, sun.data.color, sun.data.angle = 6.0, (1.0, 0.9, 0.75), math.radians(0.6)
+    # A sun 6 degrees up shines through a long air path: reddened, as in the sky around it.
+    sun.data.energy, sun.data.color, sun.data.angle = 20.0, (1.0, 0.75, 0.5), math.radians(0.6)
     # The sky is in physical units: AgX with a lower exposure keeps the low sun's sky in range.
     scene.view_settings.view_transform = "AgX"
     scene.view_settings.exposure = -3.0

@@ -41,7 +41,7 @@ def main(argv=None):
     parser.add_argument("--width", type=int, default=640)
     parser.add_argument("--height", type=int, default=360)
     parser.add_argument("--samples", type=int, help="override the preview preset's samples for the still")
-    parser.add_argument("--frame", type=int, default=200, help="frame of the still")
+    parser.add_argument("--frame", type=int, default=120, help="frame of the still")
     parser.add_argument("--no-animation", action="store_true", help="skip the animation frames")
     args = parser.parse_args(argv)
 
