@@ -18,8 +18,6 @@ import statistics
 import sys
 import time
 
-import numpy as np
-
 REPO = pathlib.Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(REPO))
 
@@ -89,7 +87,7 @@ def main(argv=None):
     _, reference = timed_render(readback, scene, 1)
 
     def rmse(pixels):
-        return float(np.sqrt(np.mean((pixels.astype(np.float64) - reference) ** 2)))
+        return results.display_rmse(pixels, reference, scene.view_settings.exposure)
 
     saving = 1.0 - after / before
     lines = [f"\n## Optimizer — {datetime.date.today()} — `python bench/optimize.py"
@@ -97,7 +95,8 @@ def main(argv=None):
              f"Machine: {platform.machine()}, {len(os.sched_getaffinity(0))} cores, "
              f"bpy {bpy.app.version_string}. Demo frame {FRAME}, {RESOLUTION[0]}x{RESOLUTION[1]}, "
              f"{SAMPLES} spp, "
-             f"median of {repeats}; reference: the optimized scene at {scene.cycles.samples} spp.\n",
+             f"median of {repeats}; reference: the optimized scene at {scene.cycles.samples} spp; "
+             "RMSE clipped at the display's white.\n",
              "| scene | render s | RMSE to reference |", "|---|---|---|",
              f"| wasteful demo | {before:.2f} | {rmse(before_pixels):.5f} |",
              f"| after optimize_scene | {after:.2f} | {rmse(after_pixels):.5f} |",

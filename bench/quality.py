@@ -18,8 +18,6 @@ import platform
 import sys
 import time
 
-import numpy as np
-
 REPO = pathlib.Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(REPO))
 
@@ -63,8 +61,10 @@ def main(argv=None):
                 use_denoising=False)
     _, reference = render(readback, scene, base, presets)
 
+    white = 2.0 ** -scene.view_settings.exposure
+
     def rmse(pixels):
-        return float(np.sqrt(np.mean((pixels.astype(np.float64) - reference) ** 2)))
+        return results.display_rmse(pixels, reference, scene.view_settings.exposure)
 
     counts = (4, 16, 64) if args.quick else (4, 8, 16, 32, 64, 128, 256)
     rows = []
@@ -100,7 +100,8 @@ def main(argv=None):
              f"{' --quick' if args.quick else ''}`\n",
              f"Machine: {platform.machine()}, {len(os.sched_getaffinity(0))} cores, "
              f"bpy {bpy.app.version_string}. Demo frame {FRAME} at {RESOLUTION[0]}x{RESOLUTION[1]}; "
-             f"reference {reference_spp} spp raw, unbiased volumes.\n",
+             f"reference {reference_spp} spp raw, unbiased volumes; RMSE of linear pixels clipped at "
+             f"the display's white ({white:g} at exposure {scene.view_settings.exposure:g}).\n",
              "| kind | settings | render s | RMSE | vs Blender defaults |", "|---|---|---|---|---|"]
     for kind, label, seconds, error in rows:
         versus = f"{defaults[2] / seconds:.1f}x faster, RMSE {error / defaults[3]:.2f}x"

@@ -11,3 +11,16 @@ def publish(lines, append=True):
     if append:
         with open(RESULTS, "a") as results:
             results.write(text)
+
+
+def display_rmse(pixels, reference, exposure):
+    """RMSE of linear pixels clipped at the display's white (2^-exposure).
+
+    A sun disc in frame is thousands of times brighter than white; unclipped, the noise of its
+    sub-pixel coverage alone made the RMSE (128 at 64 spp in the demo).
+    """
+    import numpy as np
+
+    white = 2.0 ** -exposure
+    difference = np.minimum(np.asarray(pixels, np.float64), white) - np.minimum(reference, white)
+    return float(np.sqrt(np.mean(difference ** 2)))
