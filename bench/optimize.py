@@ -32,15 +32,9 @@ def wasteful_demo(bpy):
     session.reset()
     bpy.ops.sandscape.build_demo_scene()
     scene = bpy.context.scene
-    bpy.ops.mesh.primitive_cube_add(size=30, location=(0, 0, 5))
-    fog = bpy.context.active_object
-    material = bpy.data.materials.new("Empty Fog")
-    tree = material.node_tree
-    tree.nodes.clear()
-    scatter = tree.nodes.new("ShaderNodeVolumeScatter")
-    scatter.inputs["Density"].default_value = 0.0
-    tree.links.new(scatter.outputs[0], tree.nodes.new("ShaderNodeOutputMaterial").inputs["Volume"])
-    fog.data.materials.append(material)
+    from devtools import scenes
+
+    scenes.empty_fog(30, (0, 0, 5))
     bpy.ops.mesh.primitive_plane_add(size=6, location=(0, 0, 2.5))
     slab = bpy.context.active_object
     slab.modifiers.new("Subdivision", "SUBSURF").use_adaptive_subdivision = True

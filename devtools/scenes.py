@@ -145,3 +145,25 @@ def footprint_settings(terrain, walker, frames, **values):
     for key, value in values.items():
         setattr(settings, key, value)
     return settings
+
+
+def single_node_material(name, shader, output="Surface", **inputs):
+    """A material of one shader node (e.g. ShaderNodeVolumeScatter) into the output's `output` socket."""
+    material = bpy.data.materials.new(name)
+    tree = material.node_tree
+    tree.nodes.clear()
+    node = tree.nodes.new(shader)
+    for key, value in inputs.items():
+        node.inputs[key].default_value = value
+    tree.links.new(node.outputs[0], tree.nodes.new("ShaderNodeOutputMaterial").inputs[output])
+    return material
+
+
+def empty_fog(size, location):
+    """A cube of density-0 Volume Scatter: a volume that scatters nothing."""
+    bpy.ops.mesh.primitive_cube_add(size=size, location=location)
+    fog = bpy.context.active_object
+    fog.name = "Empty Fog"
+    fog.data.materials.append(single_node_material("Empty Fog", "ShaderNodeVolumeScatter", "Volume",
+                                                   Density=0.0))
+    return fog

@@ -21,13 +21,8 @@ SIZE = 48
 def shaft_scene():
     def build(**atmosphere):
         ground = readback.uv_plane(20.0, "Ground")
-        black = bpy.data.materials.new("Black")  # reflects nothing: even a black BSDF has a specular glint
-        tree = black.node_tree
-        tree.nodes.clear()
-        emission = tree.nodes.new("ShaderNodeEmission")
-        emission.inputs["Strength"].default_value = 0.0
-        tree.links.new(emission.outputs[0], tree.nodes.new("ShaderNodeOutputMaterial").inputs["Surface"])
-        ground.data.materials.append(black)
+        # Reflects nothing: even a black BSDF has a specular glint.
+        ground.data.materials.append(scenes.single_node_material("Black", "ShaderNodeEmission", Strength=0.0))
         bpy.ops.mesh.primitive_plane_add(size=1.0, location=(-5.0, 0.0, 3.0))
         roof = bpy.context.active_object
         roof.scale = (10.0, 20.0, 1.0)

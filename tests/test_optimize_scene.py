@@ -6,6 +6,8 @@ import math
 import bpy
 import pytest
 
+from devtools import scenes
+
 
 def messages(capture):
     return [line for line in capture if line]
@@ -16,16 +18,7 @@ def wasteful_demo():
     """The demo plus things that cost render time and add nothing."""
     bpy.ops.sandscape.build_demo_scene()
     scene = bpy.context.scene
-    bpy.ops.mesh.primitive_cube_add(size=2, location=(0, 0, 5))
-    fog = bpy.context.active_object
-    fog.name = "Empty Fog"
-    material = bpy.data.materials.new("Empty Fog")
-    tree = material.node_tree
-    tree.nodes.clear()
-    scatter = tree.nodes.new("ShaderNodeVolumeScatter")
-    scatter.inputs["Density"].default_value = 0.0
-    tree.links.new(scatter.outputs[0], tree.nodes.new("ShaderNodeOutputMaterial").inputs["Volume"])
-    fog.data.materials.append(material)
+    fog = scenes.empty_fog(2, (0, 0, 5))
     bpy.ops.mesh.primitive_plane_add(size=4, location=(0, 0, 0.5))
     slab = bpy.context.active_object
     slab.name = "Flat Slab"
