@@ -32,7 +32,7 @@ def wasteful_demo(bpy):
     session.reset()
     bpy.ops.sandscape.build_demo_scene()
     scene = bpy.context.scene
-    from devtools import scenes
+    from devtools import scenes  # here, not at the top: it imports bpy, which must follow isolate()
 
     scenes.empty_fog(30, (0, 0, 5))
     bpy.ops.mesh.primitive_plane_add(size=6, location=(0, 0, 2.5))

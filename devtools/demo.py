@@ -66,8 +66,7 @@ def main(argv=None):
     scene.render.image_settings.file_format = "PNG"
     scene.render.resolution_x, scene.render.resolution_y = args.width, args.height
     scene.render.resolution_percentage = 100
-    bpy.ops.sandscape.apply_quality_preset(preset="PREVIEW")
-    if args.samples:
+    if args.samples:  # the scene is built at the Preview preset
         scene.cycles.samples = args.samples
     scene.frame_set(args.frame)
     scene.render.filepath = str(output)

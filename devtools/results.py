@@ -2,6 +2,8 @@
 
 import pathlib
 
+import numpy as np
+
 RESULTS = pathlib.Path(__file__).resolve().parent.parent / "bench" / "RESULTS.md"
 
 
@@ -19,8 +21,6 @@ def display_rmse(pixels, reference, exposure):
     A sun disc in frame is thousands of times brighter than white; unclipped, the noise of its
     sub-pixel coverage alone made the RMSE (128 at 64 spp in the demo).
     """
-    import numpy as np
-
     white = 2.0 ** -exposure
     difference = np.minimum(np.asarray(pixels, np.float64), white) - np.minimum(reference, white)
     return float(np.sqrt(np.mean(difference ** 2)))

@@ -69,8 +69,8 @@ class SANDSCAPE_OT_apply_quality_preset(bpy.types.Operator):
                ("FINAL", "Final", "384 samples: the error of Blender's defaults in less time")))
 
     def execute(self, context):
-        presets.apply(context.scene, presets.PRESETS[self.preset])
         settings = presets.PRESETS[self.preset]
+        presets.apply(context.scene, settings)
         self.report({"INFO"}, f"{self.preset.title()}: " + ", ".join(f"{k} {v}" for k, v in settings.items()))
         return {"FINISHED"}
 
