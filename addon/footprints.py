@@ -20,7 +20,7 @@ from ..core import footprints as painter
 from ..core import paths
 from ..node_groups import helper as h
 from ..node_groups import print_markers, region_cut, sand_material
-from . import images
+from . import compat, images
 
 OBJECT_KEY = "sandscape_object"
 TERRAIN_KEY = "sandscape_terrain"
@@ -352,9 +352,8 @@ def ensure_cut(terrain, low, high):
         modifier.node_group = h.ensure_group(region_cut)
     identifiers = {item.name: item.identifier for item in modifier.node_group.interface.items_tree
                    if item.item_type == "SOCKET" and item.in_out == "INPUT"}
-    modifier[identifiers["Min"]] = (float(low[0]), float(low[1]), -1e30)
-    modifier[identifiers["Max"]] = (float(high[0]), float(high[1]), 1e30)
-    terrain.update_tag()
+    compat.set_modifier_input(modifier, identifiers["Min"], (float(low[0]), float(low[1]), -1e30))
+    compat.set_modifier_input(modifier, identifiers["Max"], (float(high[0]), float(high[1]), 1e30))
     return modifier
 
 
