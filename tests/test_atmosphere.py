@@ -176,7 +176,7 @@ def test_wind_dust_is_frame_driven_and_absent_when_off():
     driver = tree.animation_data.drivers[0].driver
     assert driver.expression == "frame" and driver.is_simple_expression
     bpy.context.scene.frame_set(42)
-    assert field.inputs["Frame"].default_value == 42.0
+    assert field.inputs["Frame"].default_value == pytest.approx(42.0, abs=1e-6)
     assert bpy.context.scene.cycles.volume_biased  # ray marching for the noise density
     assert not [n for n in tree.nodes if n.bl_idname == "ShaderNodeVolumeScatter"]  # no dust: no HG node
     settings.use_wind, settings.dust_density = False, 0.01

@@ -15,6 +15,7 @@ STRIDE, STANCE = 0.7, 0.2
 TEXEL = 0.005  # metres; the rim peak of a round-ended sole lands on a texel centre
 DEPTH, RIM = 0.03, 0.008  # the group's sockets: metres per unit of R and of G
 TOLERANCE = 1e-4
+CHANNEL_TOLERANCE = 1e-6  # unit-free image channels (0..1): float32 round-off, no more
 
 
 def straight_walk(steps=8, frames_per_metre=24.0):
@@ -84,7 +85,7 @@ def test_depth_and_rim_at_their_analytic_places(painted):
     for centre, side in zip(steps["contact"][:, :2], steps["side"], strict=True):
         row, col = texel_of(region, centre)
         assert abs(DEPTH * image[row, col, 0] - DEPTH) < TOLERANCE
-        assert image[row, col, 1] == 0.0
+        assert abs(image[row, col, 1]) <= CHANNEL_TOLERANCE
         # Rim peak: half a rim band outside the straight edge, on the side away from the path.
         offset = sole.width / 2 + sole.rim_band(TEXEL) / 2
         row, col = texel_of(region, centre + (0.0, side * offset))
@@ -100,7 +101,8 @@ def test_zero_outside_the_stamp_radius(painted):
     nearest = np.min([np.hypot(x - cx, y - cy) for cx, cy in steps["contact"][:, :2]], axis=0)
     outside = nearest > sole.reach(TEXEL)
     assert outside.any() and not image[outside].any()
-    assert (image[nearest < sole.width / 2 - sole.edge, 0] == 1.0).all()  # the flat bottom
+    flat_bottom = image[nearest < sole.width / 2 - sole.edge, 0]
+    assert np.abs(flat_bottom - 1.0).max() <= CHANNEL_TOLERANCE
 
 
 def test_birth_channel_reveals_each_print_when_the_walker_passes(painted):
@@ -110,7 +112,7 @@ def test_birth_channel_reveals_each_print_when_the_walker_passes(painted):
         assert abs(image[row, col, 2] * frames[-1] - birth) < 1e-3
         before = fp.revealed_height(image, DEPTH, RIM, birth - 1, (0, frames[-1]))
         after = fp.revealed_height(image, DEPTH, RIM, birth, (0, frames[-1]))
-        assert before[row, col] == 0.0 and abs(after[row, col] + DEPTH) < TOLERANCE
+        assert abs(before[row, col]) < TOLERANCE and abs(after[row, col] + DEPTH) < TOLERANCE
 
 
 def test_toe_is_wider_than_heel_and_points_forward():
@@ -133,7 +135,7 @@ def test_a_later_sole_flattens_an_earlier_rim_and_depth_stays_bounded():
     rim_point = texel_of(region, (0.0, sole.width / 2 + sole.rim_band(TEXEL) / 2))
     later_second = fp.paint(centres, forward, lateral, [0.0, 1.0], 1.0, region, sole)
     later_first = fp.paint(centres, forward, lateral, [1.0, 0.0], 1.0, region, sole)
-    assert later_second[rim_point][1] == 0.0  # flattened by the later sole
+    assert abs(later_second[rim_point][1]) <= CHANNEL_TOLERANCE  # flattened by the later sole
     assert later_first[rim_point][1] > 0.5  # the earlier sole does not flatten a later rim
     assert later_second[..., 0].max() <= 1.0
 
@@ -172,7 +174,7 @@ def test_bad_prints_are_skipped_not_painted():
     forward = [[1.0, 0.0], [1.0, 0.0], [0.0, 0.0], [1.0, 0.0]]  # print 3 has a degenerate frame
     lateral = [[0.0, 1.0]] * 4
     image = fp.paint(centres, forward, lateral, [0, 1, 2, 3], [1.0, 1.0, 1.0, 1.0], region)
-    assert np.isfinite(image).all() and image[..., 0].max() == 1.0
+    assert np.isfinite(image).all() and abs(image[..., 0].max() - 1.0) <= CHANNEL_TOLERANCE
 
 
 @pytest.mark.parametrize("resolution", [1, 2, 7])

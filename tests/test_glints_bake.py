@@ -100,7 +100,9 @@ def test_glints_follow_the_object_not_the_world(glints_group, plane):
     plane.location = (3.2, -1.7, 0.4)
     plane.rotation_euler = (0.3, 0.2, 1.1)
     moved = readback.bake_emit(plane, plane.active_material, RES)[..., 0]
-    assert np.array_equal(still, moved)
+    # The mask is 0 or 1; another cell glinting would differ by 1. Bakes after a transform may
+    # round differently (5.2 gives 1.0000001 where 5.0 gives 1.0).
+    assert np.abs(still - moved).max() <= 1e-5
 
 
 def test_image_source_bake_equals_twin(sandscape, plane):

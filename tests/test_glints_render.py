@@ -55,7 +55,7 @@ def test_rendered_glint_matches_twin(glints_group, power):
     error = np.abs(rendered - expected)[keep] / 2.0
     assert error.max() <= RENDER_TOLERANCE, f"max error {error.max():.2e}"
     background = (np.linalg.norm(positions[..., :2], axis=-1) > RADIUS * 1.02)
-    assert np.all(rendered[background] == 0.0)
+    assert np.abs(rendered[background]).max() <= 1e-6
 
 
 def test_facing_power_falls_off_towards_the_rim(glints_group):
