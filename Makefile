@@ -1,15 +1,34 @@
 # make demo: venv + pinned deps, build the demo scene headless, render out/demo.png
 # make test: venv + pinned deps, ruff, then the whole pytest suite
-PYTHON ?= python3.11
+#
+# BLENDER picks the bpy the commands run on, each in its own venv:
+#   5.2 (default, the current LTS): bpy 5.2.3 on Python 3.13, .venv, requirements.txt
+#   5.0:                            bpy 5.0.1 on Python 3.11, .venv-5.0, requirements-5.0.txt
+# PYTHON=/path/to/pythonX.Y overrides the interpreter devtools/find-python finds.
+BLENDER ?= 5.2
+ifeq ($(BLENDER),5.2)
+PYTHON_VERSION := 3.13
 VENV := .venv
+REQUIREMENTS := requirements.txt
+else ifeq ($(BLENDER),5.0)
+PYTHON_VERSION := 3.11
+VENV := .venv-5.0
+REQUIREMENTS := requirements-5.0.txt
+else
+$(error BLENDER must be 5.2 or 5.0, got '$(BLENDER)')
+endif
+PYTHON ?= $(shell sh devtools/find-python $(PYTHON_VERSION))
 PY := $(VENV)/bin/python
 STAMP := $(VENV)/.installed
 
 .PHONY: demo test lint bench clean
 
-$(STAMP): requirements.txt
-	test -x $(PY) || $(PYTHON) -m venv $(VENV)
-	$(PY) -m pip install --disable-pip-version-check -q -r requirements.txt
+# A venv made by another Python (an older checkout's, or the other Blender's) is made anew.
+$(STAMP): $(REQUIREMENTS)
+	@test -n "$(PYTHON)" || { echo "make: no Python $(PYTHON_VERSION) for Blender $(BLENDER); pass PYTHON=/path/to/python$(PYTHON_VERSION)" >&2; exit 2; }
+	@[ "$$($(PY) -c 'import sys; print("%d.%d" % sys.version_info[:2])' 2>/dev/null)" = "$(PYTHON_VERSION)" ] \
+		|| { rm -rf $(VENV) && echo "$(PYTHON) -m venv $(VENV)" && $(PYTHON) -m venv $(VENV); }
+	$(PY) -m pip install --disable-pip-version-check -q -r $(REQUIREMENTS)
 	touch $(STAMP)
 
 demo: $(STAMP)

@@ -40,4 +40,14 @@ bpy.ops.mesh.primitive_plane_add()
 result["operator"] = sorted(bpy.ops.sandscape.add_sand_material())
 material = bpy.context.active_object.active_material
 result["material"] = material.get("sandscape_material") if material else None
+
+# Footprints through the installed copy: a walker over a subdivided plane, painted.
+bpy.ops.mesh.primitive_grid_add(x_subdivisions=20, y_subdivisions=20, size=10)
+terrain = bpy.context.active_object
+bpy.ops.sandscape.add_walker()
+bpy.context.scene.frame_end = 48
+result["paint"] = sorted(bpy.ops.sandscape.paint_footprints())
+depsgraph = bpy.context.evaluated_depsgraph_get()
+result["cut_faces"] = len(terrain.data.polygons) - len(terrain.evaluated_get(depsgraph).data.polygons)
+result["blender"] = bpy.app.version_string
 print("RESULT " + json.dumps(result))
