@@ -1,12 +1,16 @@
 """Quality presets: render settings chosen from measured time-vs-error curves (bench/quality.py).
 
-Each preset is a dict of Cycles settings. BLENDER_DEFAULTS holds what a new 5.0 scene uses,
+Each preset is a dict of Cycles settings. BLENDER_DEFAULTS holds what a new 5.2 scene uses,
 for the comparison the bench draws. See bench/RESULTS.md ("Quality") for the curves.
+
+Every preset names its sampling pattern: a new scene gets Tabulated Sobol in Blender 5.0 and
+Automatic in 5.2, so without it the same build would render other noise on each version.
 """
 
 BLENDER_DEFAULTS = {
     "samples": 4096, "use_adaptive_sampling": True, "adaptive_threshold": 0.01, "use_denoising": True,
     "volume_biased": False, "volume_step_rate": 1.0, "dicing_rate": 1.0, "max_bounces": 12,
+    "sampling_pattern": "AUTOMATIC",
 }
 
 # Chosen from the curves of bench/quality.py (demo frame 150, 240x135, 2 cores; RMSE clipped at
@@ -18,7 +22,8 @@ BLENDER_DEFAULTS = {
 # The other knobs keep Blender's values: moved alone around preview, adaptive thresholds and the
 # volume step rate stayed on the samples curve, and dicing 0.5-4 and 2-8 bounces changed < 2 %.
 _RAW_RAY_MARCHED = {"use_adaptive_sampling": False, "adaptive_threshold": 0.0, "use_denoising": False,
-                    "volume_biased": True, "volume_step_rate": 1.0, "dicing_rate": 1.0, "max_bounces": 12}
+                    "volume_biased": True, "volume_step_rate": 1.0, "dicing_rate": 1.0, "max_bounces": 12,
+                    "sampling_pattern": "AUTOMATIC"}
 PRESETS = {
     "DRAFT": {"samples": 32, **_RAW_RAY_MARCHED},
     "PREVIEW": {"samples": 64, **_RAW_RAY_MARCHED},

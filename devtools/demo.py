@@ -57,7 +57,9 @@ def main(argv=None):
     bpy.ops.sandscape.build_demo_scene()
     stages.append(("build the scene", time.perf_counter() - mark))
     mark = time.perf_counter()
-    bpy.ops.wm.save_as_mainfile(filepath=str(pathlib.Path(args.blend).resolve()), compress=True)
+    blend = pathlib.Path(args.blend).resolve()
+    blend.parent.mkdir(parents=True, exist_ok=True)
+    bpy.ops.wm.save_as_mainfile(filepath=str(blend), compress=True)
     stages.append(("save demo.blend", time.perf_counter() - mark))
 
     scene = bpy.context.scene

@@ -69,10 +69,14 @@ def _occlusion(tree, layers, rays, radius):
     """Sun colour inside a soft disc of `radius` (frame heights) around the sun, where sky is seen."""
     coordinates = h.add_node(tree, "CompositorNodeImageCoordinates", (-900, -700))
     h.link(tree, layers.outputs["Image"], coordinates.inputs["Image"])
-    info = h.add_node(tree, "CompositorNodeImageInfo", (-900, -900))
+    # The frame's size in pixels as a float vector: (1, 1) relative to each dimension. Not Image
+    # Info's Dimensions, an integer vector in 5.2 whose link Blender 5.0 drops when it opens the file.
+    info = h.add_node(tree, "CompositorNodeRelativeToPixel", (-900, -900), "Frame Size",
+                      data_type="VECTOR", reference_dimension="PER_DIMENSION")
+    info.inputs["Vector Value"].default_value = (1.0, 1.0)
     h.link(tree, layers.outputs["Image"], info.inputs["Image"])
     size = h.add_node(tree, "ShaderNodeSeparateXYZ", (-700, -900))
-    h.link(tree, info.outputs["Dimensions"], size.inputs[0])
+    h.link(tree, info.outputs["Vector Value"], size.inputs[0])
     aspect = h.math(tree, "DIVIDE", size.outputs["X"], size.outputs["Y"], (-500, -900), "Aspect")
     offset = h.add_node(tree, "ShaderNodeVectorMath", (-700, -700), operation="SUBTRACT")
     h.link(tree, coordinates.outputs["Normalized"], offset.inputs[0])
