@@ -12,11 +12,8 @@ Run: .venv/bin/python bench/atmosphere.py [--quick] [--no-append]
 """
 
 import argparse
-import datetime
 import math
-import os
 import pathlib
-import platform
 import sys
 import time
 
@@ -86,15 +83,15 @@ def main(argv=None):
                              bool(np.isfinite(pixels).all())))
                 print(rows[-1], flush=True)
 
-    lines = [f"\n## Atmosphere — {datetime.date.today()} — `python bench/atmosphere.py"
-             f"{' --quick' if args.quick else ''}`\n",
-             f"Machine: {platform.machine()}, {len(os.sched_getaffinity(0))} cores, "
-             f"bpy {bpy.app.version_string}. "
-             f"{RESOLUTION[0]}x{RESOLUTION[1]}, no denoising. Reference per scene: unbiased at "
+    lines = [results.heading("Atmosphere", ["--quick"] if args.quick else []),
+             f"{results.machine()}. {RESOLUTION[0]}x{RESOLUTION[1]}, no denoising. "
+             "Reference per scene: unbiased at "
              f"{reference_spp} spp.\n",
-             "| scene | volume sampling | spp | render s | RMSE | finite |", "|---|---|---|---|---|---|"]
+             "| Blender | scene | volume sampling | spp | render s | RMSE | finite |",
+             "|---|---|---|---|---|---|---|"]
     for label, name, samples, seconds, error, finite in rows:
-        lines.append(f"| {label} | {name} | {samples} | {seconds:.2f} | {error:.5f} | {finite} |")
+        lines.append(f"| {results.blender()} | {label} | {name} | {samples} | {seconds:.2f} | {error:.5f} | "
+                     f"{finite} |")
     lines += ["", *speedups(rows)]
     results.publish(lines, append=not args.no_append)
 

@@ -13,11 +13,9 @@ Run: .venv/bin/python bench/footprint_dicing.py [--no-append]
 """
 
 import argparse
-import datetime
 import importlib
 import os
 import pathlib
-import platform
 import re
 import sys
 import tempfile
@@ -113,10 +111,9 @@ def main(argv=None):
         rows.append((name, seconds, memory, found))
         print(name, f"{seconds:.2f} s", f"{memory:.2f} MiB", found[:4])
     difference = np.abs(renders["patch"][1][..., 0] - renders["whole"][1][..., 0])
-    lines = [f"\n## Footprint dicing — {datetime.date.today()} — `python bench/footprint_dicing.py`\n",
-             f"Machine: {platform.machine()}, {len(os.sched_getaffinity(0))} cores, "
-             f"bpy {bpy.app.version_string}. "
-             f"40 m terrain of 80x80 quads, 12 prints, {RESOLUTION[0]}x{RESOLUTION[1]} perspective, 1 spp, "
+    lines = [results.heading("Footprint dicing"),
+             f"{results.machine()}. 40 m terrain of 80x80 quads, 12 prints, "
+             f"{RESOLUTION[0]}x{RESOLUTION[1]} perspective, 1 spp, "
              "dicing 1 px.\n",
              "| set-up | render s | Cycles geometry memory MiB | per object |", "|---|---|---|---|"]
     for name, seconds, memory, found in rows:

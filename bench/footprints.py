@@ -18,12 +18,10 @@ Run: .venv/bin/python bench/footprints.py [--quick] [--no-append]
 """
 
 import argparse
-import datetime
 import functools
 import json
 import os
 import pathlib
-import platform
 import statistics
 import subprocess
 import sys
@@ -206,7 +204,6 @@ def main(argv=None):
         dynamic_paint_child(int(args.dynamic_paint_child[0]), args.dynamic_paint_child[1])
         return
     resolutions = (1024, 2048, 4096)
-    command = "python bench/footprints.py" + (" --quick" if args.quick else "")
     rows, version = sandscape_rows(resolutions)
     for row in rows:
         if args.quick and row["resolution"] > 2048:
@@ -215,24 +212,24 @@ def main(argv=None):
         row["dynamic_paint"] = run_dynamic_paint(row["resolution"])
         print(row["resolution"], row["dynamic_paint"], flush=True)
 
-    lines = [f"\n## Footprints — {datetime.date.today()} — `{command}`\n",
-             f"Machine: {platform.machine()}, {len(os.sched_getaffinity(0))} cores, bpy {version}. Walk: "
+    lines = [results.heading("Footprints", ["--quick"] if args.quick else []),
+             f"{results.machine()}. Walk: "
              f"{PRINTS} prints, stride {STRIDE} m, frames {FRAMES[0]}..{FRAMES[1]}. "
              f"Dynamic Paint: two box feet (volume brushes) on a {PLANE:g} m displace canvas of res x res, "
              "EXR per frame. Sandscape: one print map over the prints' region (res texels along its "
              "longer side).\n",
              "Floors: one `np.full` write of the Sandscape map, and of a res x res RGBA float32 canvas like "
              "Dynamic Paint's.\n",
-             "| res | Sandscape map | texel mm | painter s | map floor s | painter / map floor | "
+             "| Blender | res | Sandscape map | texel mm | painter s | map floor s | painter / map floor | "
              "canvas floor s | painter / canvas floor | operator s | prints/s (10k) | Dynamic Paint s | "
              "DP / painter | DP / operator |",
-             "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for row in rows:
         dp = row["dynamic_paint"]
         dp_cells = ("not run (--quick)", "", "") if dp is None else (
             f"{dp['seconds']:.2f} ({dp['files']} files)", f"{dp['seconds'] / row['painter']:.0f}x",
             f"{dp['seconds'] / row['operator']:.0f}x")
-        lines.append(f"| {row['resolution']} | {row['shape'][1]}x{row['shape'][0]} | "
+        lines.append(f"| {version} | {row['resolution']} | {row['shape'][1]}x{row['shape'][0]} | "
                      f"{row['texel'] * 1000:.2f} | {row['painter']:.4f} | {row['floor']:.5f} | "
                      f"{row['painter'] / row['floor']:.1f} | "
                      f"{row['canvas_floor']:.4f} | {row['painter'] / row['canvas_floor']:.2f} | "

@@ -10,9 +10,7 @@ Run: .venv/bin/python bench/glints.py [--quick]
 """
 
 import argparse
-import datetime
 import pathlib
-import platform
 import statistics
 import sys
 import time
@@ -52,7 +50,6 @@ def main(argv=None):
     parser.add_argument("--quick", action="store_true", help="smaller frames, fewer samples")
     parser.add_argument("--no-append", action="store_true", help="do not write bench/RESULTS.md")
     args = parser.parse_args(argv)
-    command = "python bench/glints.py" + (" --quick" if args.quick else "")
 
     root = session.isolate()
     import bpy
@@ -108,9 +105,8 @@ def main(argv=None):
             if rmse < TARGET_RMSE and denoise not in needed:
                 needed[denoise] = (spp, seconds)
 
-    lines = [f"\n## Glints — {datetime.date.today()} — `{command}`\n",
-             f"Machine: {platform.machine()}, {len(__import__('os').sched_getaffinity(0))} cores, "
-             f"Cycles CPU, bpy {bpy.app.version_string}. Reference: {ref_spp} spp, no denoising.\n",
+    lines = [results.heading("Glints", ["--quick"] if args.quick else []),
+             f"{results.machine()}, Cycles CPU. Reference: {ref_spp} spp, no denoising.\n",
              "| case | frame | spp | denoise | render s | glint RMSE |", "|---|---|---|---|---|---|"]
     for case, frame, spp, denoise, seconds, rmse in rows:
         lines.append(f"| {case} | {frame} | {spp} | {denoise} | {seconds:.3f} | "

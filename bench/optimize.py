@@ -9,11 +9,8 @@ Run: .venv/bin/python bench/optimize.py [--quick] [--no-append]
 """
 
 import argparse
-import datetime
 import math
-import os
 import pathlib
-import platform
 import statistics
 import sys
 import time
@@ -84,10 +81,8 @@ def main(argv=None):
         return results.display_rmse(pixels, reference, scene.view_settings.exposure)
 
     saving = 1.0 - after / before
-    lines = [f"\n## Optimizer — {datetime.date.today()} — `python bench/optimize.py"
-             f"{' --quick' if args.quick else ''}`\n",
-             f"Machine: {platform.machine()}, {len(os.sched_getaffinity(0))} cores, "
-             f"bpy {bpy.app.version_string}. Demo frame {FRAME}, {RESOLUTION[0]}x{RESOLUTION[1]}, "
+    lines = [results.heading("Optimizer", ["--quick"] if args.quick else []),
+             f"{results.machine()}. Demo frame {FRAME}, {RESOLUTION[0]}x{RESOLUTION[1]}, "
              f"{SAMPLES} spp, "
              f"median of {repeats}; reference: the optimized scene at {scene.cycles.samples} spp; "
              "RMSE clipped at the display's white.\n",

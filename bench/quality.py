@@ -11,10 +11,7 @@ Run: .venv/bin/python bench/quality.py [--quick] [--no-append]
 """
 
 import argparse
-import datetime
-import os
 import pathlib
-import platform
 import sys
 import time
 
@@ -105,10 +102,8 @@ def main(argv=None):
         print(rows[-1], flush=True)
     defaults = next(r for r in rows if r[0] == "Blender defaults")
     curve = sorted((s, e) for kind, _, s, e in rows if kind in ("defaults curve", "Blender defaults"))
-    lines = [f"\n## Quality — {datetime.date.today()} — `python bench/quality.py"
-             f"{' --quick' if args.quick else ''}`\n",
-             f"Machine: {platform.machine()}, {len(os.sched_getaffinity(0))} cores, "
-             f"bpy {bpy.app.version_string}. Demo frame {FRAME} at {RESOLUTION[0]}x{RESOLUTION[1]}; "
+    lines = [results.heading("Quality", ["--quick"] if args.quick else []),
+             f"{results.machine()}. Demo frame {FRAME} at {RESOLUTION[0]}x{RESOLUTION[1]}; "
              f"reference {reference_spp} spp raw, unbiased volumes; RMSE of linear pixels clipped at "
              f"the display's white ({white:g} at exposure {scene.view_settings.exposure:g}).\n",
              "| kind | settings | render s | RMSE | vs Blender defaults |", "|---|---|---|---|---|"]

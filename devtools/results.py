@@ -1,10 +1,15 @@
 """Benchmark output: print the table, and append it to bench/RESULTS.md unless told not to."""
 
+import datetime
+import os
 import pathlib
+import platform
+import sys
 
 import numpy as np
 
-RESULTS = pathlib.Path(__file__).resolve().parent.parent / "bench" / "RESULTS.md"
+REPO = pathlib.Path(__file__).resolve().parent.parent
+RESULTS = REPO / "bench" / "RESULTS.md"
 
 
 def publish(lines, append=True):
@@ -13,6 +18,31 @@ def publish(lines, append=True):
     if append:
         with open(RESULTS, "a") as results:
             results.write(text)
+
+
+def blender():
+    """The Blender the bench ran on, as it names itself ("5.2.3 LTS")."""
+    import bpy
+
+    return bpy.app.version_string
+
+
+def heading(title, flags=()):
+    """A section heading: what, when, on which Blender, and the command that ran it.
+
+    The command names the venv's python, which is what picks the Blender (.venv: 5.2, .venv-5.0: 5.0).
+    """
+    prefix = pathlib.Path(sys.prefix)
+    python = prefix.relative_to(REPO) / "bin" / "python" if REPO in prefix.parents else pathlib.Path(
+        sys.executable)
+    script = pathlib.Path(sys.argv[0]).resolve()
+    script = script.relative_to(REPO) if REPO in script.parents else script
+    command = " ".join([str(python), str(script), *flags])
+    return f"\n## {title} — {datetime.date.today()} — Blender {blender()} — `{command}`\n"
+
+
+def machine():
+    return f"Machine: {platform.machine()}, {len(os.sched_getaffinity(0))} cores, Blender {blender()}"
 
 
 def display_rmse(pixels, reference, exposure):
