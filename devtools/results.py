@@ -51,6 +51,10 @@ def display_rmse(pixels, reference, exposure):
     A sun disc in frame is thousands of times brighter than white; unclipped, the noise of its
     sub-pixel coverage alone made the RMSE (128 at 64 spp in the demo).
     """
-    white = 2.0 ** -exposure
+    return clipped_rmse(pixels, reference, 2.0 ** -exposure)
+
+
+def clipped_rmse(pixels, reference, white):
+    """RMSE of linear pixels with both images clipped at `white`."""
     difference = np.minimum(np.asarray(pixels, np.float64), white) - np.minimum(reference, white)
     return float(np.sqrt(np.mean(difference ** 2)))
