@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Sandscape: desert scenes for Blender (glinting sand, footprints, dusty light)."""
 
-from .addon import registration
+from .ui import registration
 
 
 def register():

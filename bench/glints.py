@@ -88,7 +88,7 @@ def main(argv=None):
     scene.cycles.use_denoising = False
     scene.view_settings.view_transform = "Standard"
     material = bpy.data.objects["Sand"].active_material
-    material_glint_coverage(material, sandscape.node_groups.sand_material.glint_node(material))
+    material_glint_coverage(material, sandscape.blender.sand.glint_node(material))
     ref_time, reference = timed_render(readback)
     rows.append(("glint coverage reference", f"{width}x{height}", ref_spp, "off", ref_time, None))
     print(rows[-1])

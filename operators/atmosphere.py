@@ -4,7 +4,7 @@ import math
 
 import bpy
 
-from ..addon import atmosphere
+from ..blender import atmosphere
 from ..core import atmosphere as air
 from ..core import post
 

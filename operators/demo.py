@@ -3,7 +3,7 @@
 import bpy
 from bpy.props import BoolProperty, EnumProperty
 
-from ..addon import demo, optimize, presets
+from ..blender import demo, optimize, presets
 
 
 class SANDSCAPE_OT_build_demo_scene(bpy.types.Operator):

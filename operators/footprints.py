@@ -10,7 +10,7 @@ import numpy as np
 from bpy_extras import anim_utils
 from mathutils import Vector
 
-from ..addon import footprints
+from ..blender import footprints
 
 WALKER, WALK_PATH = "walker", "walk_path"
 WALK_SPEED = 1.4  # metres per second, a walking pace, for the stand-in when there is no terrain

@@ -3,8 +3,9 @@
 import bpy
 from bpy.props import EnumProperty, FloatProperty, FloatVectorProperty, IntProperty, StringProperty
 
-from ..addon import images
-from ..node_groups import glints, sand_material
+from ..blender import images
+from ..blender import sand as sand_material
+from ..node_groups import glints
 
 # The operator mirrors the group's inputs: name, tooltip and default come from its socket table.
 MIRROR = {name: {"name": name, "description": spec[1], "default": spec[2]}

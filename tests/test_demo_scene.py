@@ -13,7 +13,7 @@ def test_builds_every_part(sandscape):
     scene = bpy.context.scene
     terrain = scene.sandscape_footprints.terrain
     material = terrain.active_material
-    groups = sandscape.node_groups.sand_material
+    groups = sandscape.blender.sand
     assert groups.glint_node(material) is not None and groups.footprint_node(material) is not None
     assert len(ours("footprints")[0].data.vertices) > 20 and ours("footprint_patch")
     assert ours("walker") and ours("sun") and ours("dust_volume")

@@ -107,7 +107,7 @@ def test_scene_settings_at_their_extremes_render_finite(desert, group, operator)
 
 def test_sand_operator_at_its_extremes_renders_finite(desert, sandscape):
     bpy.context.view_layer.objects.active = desert.sandscape_footprints.terrain
-    demo_sand = sandscape.addon.demo.SAND
+    demo_sand = sandscape.blender.demo.SAND
     rna = bpy.ops.sandscape.add_sand_material.get_rna_type()
     cases = settings_cases(rna)
     cases += [(f"image {label}", dict(values, source="IMAGE")) for label, values in cases

@@ -70,7 +70,7 @@ def test_dark_glints_idle_rays_and_bounces(sandscape, wasteful_demo):
     scene, fog, slab, dicing = wasteful_demo
     terrain = scene.sandscape_footprints.terrain
     material = terrain.active_material
-    sand = sandscape.node_groups.sand_material
+    sand = sandscape.blender.sand
     sand.glint_node(material).inputs["Strength"].default_value = 0.0
     scene.sandscape_atmosphere.sun_azimuth = math.radians(270.0)  # behind the walker and the camera
     scene.sandscape_atmosphere.density = scene.sandscape_atmosphere.dust_density = 0.0  # no dust box
@@ -82,5 +82,5 @@ def test_dark_glints_idle_rays_and_bounces(sandscape, wasteful_demo):
     assert any("Volume bounces 2 -> 0" in line for line in lines)
     output = next(n for n in material.node_tree.nodes if n.bl_idname == "ShaderNodeOutputMaterial")
     assert output.inputs["Surface"].links[0].from_node.bl_idname == "ShaderNodeBsdfPrincipled"
-    assert sandscape.node_groups.post_effects.rays_node(scene.compositing_node_group) is None
+    assert sandscape.blender.post.rays_node(scene.compositing_node_group) is None
     assert scene.cycles.volume_bounces == 0

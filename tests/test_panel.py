@@ -50,7 +50,7 @@ def test_panel_offers_add_then_shows_live_inputs(sandscape):
     props = {c[3]: c[1] for c in calls if c[0] == "prop"}
     assert list(props) == ["Threshold", "Glint Size", "Facing Power", "Color", "Strength", "Seed"]
     # The panel edits the material's own node sockets: live, no copy to keep in sync.
-    node = sandscape.node_groups.sand_material.glint_node(bpy.context.active_object.active_material)
+    node = sandscape.blender.sand.glint_node(bpy.context.active_object.active_material)
     assert props["Threshold"] == node.inputs["Threshold"]
 
 

@@ -7,7 +7,7 @@ import pytest
 @pytest.mark.parametrize("name", ["DRAFT", "PREVIEW", "FINAL"])
 def test_preset_sets_its_settings(sandscape, name):
     assert bpy.ops.sandscape.apply_quality_preset(preset=name) == {"FINISHED"}
-    settings = sandscape.addon.presets.PRESETS[name]
+    settings = sandscape.blender.presets.PRESETS[name]
     cycles = bpy.context.scene.cycles
     for key, value in settings.items():
         if isinstance(value, str):
@@ -17,8 +17,8 @@ def test_preset_sets_its_settings(sandscape, name):
 
 
 def test_presets_get_cheaper_in_order(sandscape):
-    presets = sandscape.addon.presets.PRESETS
+    presets = sandscape.blender.presets.PRESETS
     samples = [presets[name]["samples"] for name in ("DRAFT", "PREVIEW", "FINAL")]
-    assert samples == sorted(samples) and samples[-1] < sandscape.addon.presets.BLENDER_DEFAULTS["samples"]
+    assert samples == sorted(samples) and samples[-1] < sandscape.blender.presets.BLENDER_DEFAULTS["samples"]
     # Measured: OIDN smears glints, so no preset denoises (bench/RESULTS.md, Quality).
     assert not any(settings["use_denoising"] for settings in presets.values())

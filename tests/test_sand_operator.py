@@ -20,7 +20,7 @@ def test_rerun_updates_instead_of_duplicating(sandscape):
     assert len(ours(bpy.data.materials, "sandscape_material")) == 1
     assert len(plane.material_slots) == 1
     assert len(ours(bpy.data.node_groups, "sandscape_group")) == 2  # glints + shade
-    node = sandscape.node_groups.sand_material.glint_node(plane.active_material)
+    node = sandscape.blender.sand.glint_node(plane.active_material)
     assert node.inputs["Threshold"].default_value == pytest.approx(0.5)
     assert node.inputs["Strength"].default_value == pytest.approx(4.0)
     assert plane.active_material.cycles.emission_sampling == "NONE"  # glints light nothing else
@@ -30,7 +30,7 @@ def test_rerun_updates_instead_of_duplicating(sandscape):
     assert len(ours(bpy.data.materials, "sandscape_material")) == 1
     assert len(ours(bpy.data.images, "sandscape_image")) == 1
     bpy.ops.sandscape.add_sand_material(source="PROCEDURAL")
-    assert sandscape.node_groups.sand_material.image_node(plane.active_material) is None
+    assert sandscape.blender.sand.image_node(plane.active_material) is None
 
 
 def test_users_look_alike_data_is_never_touched(sandscape):
@@ -47,7 +47,7 @@ def test_users_look_alike_data_is_never_touched(sandscape):
     assert mine != theirs and mine.get("sandscape_material") == "sand"
     assert all(p.material_index == plane.active_material_index for p in plane.data.polygons)
     assert len(their_group.nodes) == 0 and their_group.get("sandscape_group") is None
-    assert sandscape.node_groups.sand_material.glint_node(mine).node_tree != their_group
+    assert sandscape.blender.sand.glint_node(mine).node_tree != their_group
 
 
 def test_outdated_group_is_rebuilt_and_users_move_over(sandscape):
@@ -60,7 +60,7 @@ def test_outdated_group_is_rebuilt_and_users_move_over(sandscape):
     new = helper.ensure_group(glints)
     assert new.as_pointer() != old_pointer and new.name == glints.NAME
     assert len([g for g in bpy.data.node_groups if g.get(helper.GROUP_KEY) == glints.NAME]) == 1
-    assert sandscape.node_groups.sand_material.glint_node(plane.active_material).node_tree == new
+    assert sandscape.blender.sand.glint_node(plane.active_material).node_tree == new
     assert helper.ensure_group(glints) == new  # current version: returned as is
 
 

@@ -5,8 +5,8 @@ on every run (an effect switched off is absent, not bypassed). Its parts are the
 groups Sandscape Gated Blur and Sandscape God Rays N.
 """
 
-from . import gated_blur, god_rays
-from . import helper as h
+from ..node_groups import gated_blur, god_rays
+from ..node_groups import helper as h
 
 TREE_KEY = "sandscape_compositor"
 SUN_COLOR = (1.0, 0.93, 0.8, 1.0)

@@ -2,7 +2,7 @@
 
 import bpy
 
-from ..node_groups import sand_material
+from ..blender import sand as sand_material
 
 
 class SandscapeTab:

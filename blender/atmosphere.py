@@ -12,8 +12,9 @@ from mathutils import Vector
 
 from ..core import atmosphere as air
 from ..core import post
-from ..node_groups import dust_field, dust_volume, post_effects
+from ..node_groups import dust_field, dust_volume
 from ..node_groups import helper as h
+from . import post as post_effects
 
 OBJECT_KEY = "sandscape_object"
 WORLD_KEY = "sandscape_world"

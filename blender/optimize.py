@@ -9,8 +9,9 @@ import numpy as np
 from bpy_extras import anim_utils
 from mathutils import Vector
 
-from ..node_groups import post_effects, sand_material
 from . import atmosphere
+from . import post as post_effects
+from . import sand as sand_material
 
 VOLUME_SHADERS = {"ShaderNodeVolumeScatter", "ShaderNodeVolumeAbsorption", "ShaderNodeVolumePrincipled",
                   "ShaderNodeVolumeCoefficients"}

@@ -19,8 +19,9 @@ from mathutils.bvhtree import BVHTree
 from ..core import footprints as painter
 from ..core import paths
 from ..node_groups import helper as h
-from ..node_groups import print_markers, region_cut, sand_material
+from ..node_groups import print_markers, region_cut
 from . import compat, images
+from . import sand as sand_material
 
 OBJECT_KEY = "sandscape_object"
 TERRAIN_KEY = "sandscape_terrain"

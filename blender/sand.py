@@ -6,8 +6,8 @@ like ours, is never looked at. Re-running updates our material in place.
 
 import bpy
 
-from . import footprint_height, glint_shade, glints
-from . import helper as h
+from ..node_groups import footprint_height, glint_shade, glints
+from ..node_groups import helper as h
 
 MATERIAL_KEY = "sandscape_material"
 KIND = "sand"

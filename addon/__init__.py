@@ -1,1 +1,0 @@
-"""The bpy layer: registration, panels and data helpers shared by operators and panels."""
