@@ -9,13 +9,15 @@ Time = Frame / FPS, with Frame driven by the expression `frame` (no Python auto-
 from . import helper as h
 
 NAME = "Sandscape Dust Field"
-VERSION = 1
+VERSION = 2
 TREE_TYPE = "ShaderNodeTree"
+DESCRIPTION = (
+    "Wind-lifted dust: thresholded noise moving with the wind, thinning with height; "
+    "multiply the volume density by it")
 
 
 def build(tree):
-    tree.description = ("Wind-lifted dust: thresholded noise moving with the wind, thinning with height; "
-                        "multiply the volume density by it")
+    tree.description = DESCRIPTION
     h.add_input(tree, "Frame", "NodeSocketFloat", "Current frame (driven by 'frame')", 1.0)
     h.add_input(tree, "FPS", "NodeSocketFloat", "Frames per second of the scene", 24.0, 1e-3, None)
     h.add_input(tree, "Wind", "NodeSocketVector", "Wind velocity, metres per second", (3.0, 1.0, 0.0))
@@ -54,10 +56,15 @@ def build(tree):
     h.link(tree, high.outputs[0], patches.inputs["From Max"])
     split = h.add_node(tree, "ShaderNodeSeparateXYZ", (-700, 400))
     h.link(tree, position.outputs["Position"], split.inputs[0])
-    above = h.math(tree, "SUBTRACT", split.outputs["Z"], inputs["Ground"], (-500, 400), "Height")
-    above = h.math(tree, "MAXIMUM", above.outputs[0], 0.0, (-300, 400))
-    ratio = h.math(tree, "DIVIDE", above.outputs[0], inputs["Falloff"], (-100, 400))
+    height = h.math(tree, "SUBTRACT", split.outputs["Z"], inputs["Ground"], (-500, 400), "Height")
+    clamped = h.math(tree, "MAXIMUM", height.outputs[0], 0.0, (-300, 400))
+    ratio = h.math(tree, "DIVIDE", clamped.outputs[0], inputs["Falloff"], (-100, 400))
     negative = h.math(tree, "MULTIPLY", ratio.outputs[0], -1.0, (100, 400))
     thinning = h.math(tree, "EXPONENT", negative.outputs[0], None, (300, 400), "exp(−h / falloff)")
     factor = h.math(tree, "MULTIPLY", patches.outputs["Result"], thinning.outputs[0], (500, 200), "Factor")
     h.link(tree, factor.outputs[0], group_out.inputs["Factor"])
+    h.frame(tree, "Carried by the Wind", (position, time, drift, carried, frequency, noise))
+    h.frame(tree, "Patches", (edge, low, high, patches))
+    h.frame(tree, "Thinning with Height", (split, height, clamped, ratio, negative, thinning))
+    h.frame(tree, "Factor", (factor,))
+    h.arrange(tree)

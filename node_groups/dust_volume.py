@@ -9,13 +9,15 @@ exp(-sigma_s d) per channel. Twin: core.atmosphere (rayleigh_coefficients, slab_
 from . import helper as h
 
 NAME = "Sandscape Dust Volume"
-VERSION = 1
+VERSION = 2
 TREE_TYPE = "ShaderNodeTree"
+DESCRIPTION = (
+    "Rayleigh-scattering air and dust: Color x Density is the scattering "
+    "coefficient per channel, in 1/m")
 
 
 def build(tree):
-    tree.description = ("Rayleigh-scattering air and dust: Color x Density is the scattering "
-                        "coefficient per channel, in 1/m")
+    tree.description = DESCRIPTION
     h.add_input(tree, "Color", "NodeSocketColor", "Per-channel scattering relative to the strongest "
                 "channel: (lambda_max_scatter / lambda)^4, so 0..1", (1.0, 1.0, 1.0, 1.0))
     h.add_input(tree, "Density", "NodeSocketFloat", "Scattering coefficient of the strongest channel, 1/m",
@@ -26,3 +28,4 @@ def build(tree):
     h.link(tree, group_in.outputs["Color"], scatter.inputs["Color"])
     h.link(tree, group_in.outputs["Density"], scatter.inputs["Density"])
     h.link(tree, scatter.outputs[0], group_out.inputs["Volume"])
+    h.arrange(tree)

@@ -10,8 +10,11 @@ Twin: core.footprints.revealed_height (with Noise Amount 0).
 from . import helper as h
 
 NAME = "Sandscape Footprint Height"
-VERSION = 1
+VERSION = 2
 TREE_TYPE = "ShaderNodeTree"
+DESCRIPTION = (
+    "Footprint displacement from a Sandscape print map: Rim × G − Depth × R, revealed where "
+    "the texel's birth frame (B) has been reached, varied by a noise texture")
 REVEAL_MARGIN = 1e-3  # frames: a print born at frame 12 shows at frame 12 despite float round-off
 
 # Socket name -> (type, description, default, min, max, subtype). Append only.
@@ -42,9 +45,7 @@ OUTPUTS = {
 
 
 def build(tree):
-    tree.description = (
-        "Footprint displacement from a Sandscape print map: Rim × G − Depth × R, revealed where "
-        "the texel's birth frame (B) has been reached, varied by a noise texture")
+    tree.description = DESCRIPTION
     for name, spec in INPUTS.items():
         h.add_input(tree, name, *spec)
     for name, (socket_type, description) in OUTPUTS.items():
@@ -57,10 +58,10 @@ def build(tree):
 
     # Born where B * span + start < frame + margin; span is at least one frame, as in the painter.
     span = h.math(tree, "SUBTRACT", inputs["Frame End"], inputs["Frame Start"], (-700, -100), "Span")
-    span = h.math(tree, "MAXIMUM", span.outputs[0], 1.0, (-500, -100), "Span ≥ 1")
+    span_floor = h.math(tree, "MAXIMUM", span.outputs[0], 1.0, (-500, -100), "Span ≥ 1")
     birth = h.add_node(tree, "ShaderNodeMath", (-300, -100), "Birth Frame", operation="MULTIPLY_ADD")
     h.link(tree, channels.outputs["Blue"], birth.inputs[0])
-    h.link(tree, span.outputs[0], birth.inputs[1])
+    h.link(tree, span_floor.outputs[0], birth.inputs[1])
     h.link(tree, inputs["Frame Start"], birth.inputs[2])
     now = h.math(tree, "ADD", inputs["Frame"], REVEAL_MARGIN, (-300, -300), "Frame + Margin")
     born = h.math(tree, "LESS_THAN", birth.outputs[0], now.outputs[0], (-100, -150), "Born")
@@ -88,3 +89,9 @@ def build(tree):
     h.link(tree, height.outputs[0], displacement.inputs["Height"])
     h.link(tree, height.outputs[0], group_out.inputs["Height"])
     h.link(tree, displacement.outputs[0], group_out.inputs["Displacement"])
+    h.frame(tree, "Channels", (channels,))
+    h.frame(tree, "Reveal at the Birth Frame", (span, span_floor, birth, now, born))
+    h.frame(tree, "Rim − Depth", (rim, depth, base, revealed))
+    h.frame(tree, "Variation", (noise, centred, variation, height))
+    h.frame(tree, "Displacement", (displacement,))
+    h.arrange(tree)

@@ -9,13 +9,15 @@ from ..core import post
 from . import helper as h
 
 NAME = "Sandscape Gated Blur"
-VERSION = 1
+VERSION = 2
 TREE_TYPE = "CompositorNodeTree"
+DESCRIPTION = (
+    "3x3 Gaussian (0.147761 / 0.118318 / 0.0947416, normalised) applied where it "
+    "changes the luminance by more than Threshold")
 
 
 def build(tree):
-    tree.description = ("3x3 Gaussian (0.147761 / 0.118318 / 0.0947416, normalised) applied where it "
-                        "changes the luminance by more than Threshold")
+    tree.description = DESCRIPTION
     h.add_input(tree, "Image", "NodeSocketColor", "Image to blur (the scattered light)", (0.0, 0.0, 0.0, 1.0))
     h.add_input(tree, "Threshold", "NodeSocketFloat", "Luminance change below which a pixel stays sharp",
                 0.01, 0.0, None)
@@ -25,7 +27,7 @@ def build(tree):
     # The centre first: the compositor gives a sum the domain of its first operand, and a
     # translated first operand would shift the whole blur by a pixel.
     offsets = [(1, 1)] + [(row, col) for row in range(3) for col in range(3) if (row, col) != (1, 1)]
-    total = None
+    total, taps, sums = None, [], []
     for index, (row, col) in enumerate(offsets):
         y = 300 - 150 * index
         shift = h.add_node(tree, "CompositorNodeTranslate", (-600, y),
@@ -35,6 +37,7 @@ def build(tree):
         weighted = h.add_node(tree, "ShaderNodeVectorMath", (-400, y), operation="SCALE",
                               inputs={"Scale": float(kernel[row, col])})
         h.link(tree, shift.outputs[0], weighted.inputs[0])
+        taps += [shift, weighted]
         if total is None:
             total = weighted
         else:
@@ -42,15 +45,21 @@ def build(tree):
             h.link(tree, total.outputs[0], added.inputs[0])
             h.link(tree, weighted.outputs[0], added.inputs[1])
             total = added
+            sums.append(added)
     blurred_luma = h.add_node(tree, "CompositorNodeRGBToBW", (0, 200))
     original_luma = h.add_node(tree, "CompositorNodeRGBToBW", (0, 0))
     h.link(tree, total.outputs[0], blurred_luma.inputs[0])
     h.link(tree, group_in.outputs["Image"], original_luma.inputs[0])
-    change = h.math(tree, "SUBTRACT", blurred_luma.outputs[0], original_luma.outputs[0], (200, 100))
-    change = h.math(tree, "ABSOLUTE", change.outputs[0], None, (350, 100))
+    difference = h.math(tree, "SUBTRACT", blurred_luma.outputs[0], original_luma.outputs[0], (200, 100))
+    change = h.math(tree, "ABSOLUTE", difference.outputs[0], None, (350, 100))
     gate = h.math(tree, "GREATER_THAN", change.outputs[0], group_in.outputs["Threshold"], (500, 100), "Gate")
     choose = h.add_node(tree, "ShaderNodeMix", (700, 0), data_type="RGBA", blend_type="MIX")
     h.link(tree, gate.outputs[0], choose.inputs["Factor"])
     h.link(tree, group_in.outputs["Image"], choose.inputs[6])
     h.link(tree, total.outputs[0], choose.inputs[7])
     h.link(tree, choose.outputs[2], group_out.inputs["Image"])
+    h.frame(tree, "3×3 Gaussian: Shifted Copies × Weights", taps)
+    h.frame(tree, "Sum", sums)
+    h.frame(tree, "Gate on the Luminance Change",
+            (blurred_luma, original_luma, difference, change, gate, choose))
+    h.arrange(tree)

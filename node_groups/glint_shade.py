@@ -8,8 +8,11 @@ procedural cells (glints.py) or from an image texture. Twin: core.glints.glint_s
 from . import helper as h
 
 NAME = "Sandscape Glint Shade"
-VERSION = 1
+VERSION = 2
 TREE_TYPE = "ShaderNodeTree"
+DESCRIPTION = (
+    "Glint term of the Sandscape sand: Noise above Threshold lights a grain, "
+    "(N·V)^Facing Power keeps it to where the view meets the normal")
 
 
 # Socket name -> (type, description, default, min, max, subtype); shared with glints.py so
@@ -40,9 +43,7 @@ def add_sockets(tree, input_names, inputs=INPUTS):
 
 
 def build(tree):
-    tree.description = (
-        "Glint term of the Sandscape sand: Noise above Threshold lights a grain, "
-        "(N·V)^Facing Power keeps it to where the view meets the normal")
+    tree.description = DESCRIPTION
     add_sockets(tree, ("Noise", "Threshold", "Facing Power", "Color", "Strength"))
 
     group_in, group_out = h.group_io(tree)
@@ -66,3 +67,6 @@ def build(tree):
     h.link(tree, emission.outputs[0], group_out.inputs["Emission"])
     h.link(tree, mask.outputs[0], group_out.inputs["Mask"])
     h.link(tree, glint_color.outputs[0], group_out.inputs["Glint Color"])
+    h.frame(tree, "Lit Grains × Facing", (lit, layer_weight, n_dot_v, power, falloff, mask))
+    h.frame(tree, "Glint Output", (strength, emission, glint_color))
+    h.arrange(tree)

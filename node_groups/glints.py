@@ -9,8 +9,11 @@ from . import glint_shade
 from . import helper as h
 
 NAME = "Sandscape Glints"
-VERSION = 1
+VERSION = 2
 TREE_TYPE = "ShaderNodeTree"
+DESCRIPTION = (
+    "Sparkling sand grains: object-space cells of Glint Size metres, a seeded random "
+    "value per cell, lit above Threshold and only where the view meets the normal")
 
 
 INPUTS = {
@@ -23,9 +26,7 @@ INPUTS = {
 
 
 def build(tree):
-    tree.description = (
-        "Sparkling sand grains: object-space cells of Glint Size metres, a seeded random "
-        "value per cell, lit above Threshold and only where the view meets the normal")
+    tree.description = DESCRIPTION
     glint_shade.add_sockets(tree, ("Threshold", "Glint Size", "Facing Power", "Color", "Strength", "Seed"),
                             INPUTS)
 
@@ -52,3 +53,7 @@ def build(tree):
         h.link(tree, inputs[name], shade.inputs[name])
     for name in glint_shade.OUTPUTS:
         h.link(tree, shade.outputs[name], group_out.inputs[name])
+    h.frame(tree, "Object-Space Cells", (coords, scaled, centred, cell))
+    h.frame(tree, "Seeded Noise per Cell", (noise,))
+    h.frame(tree, "Glint", (shade,))
+    h.arrange(tree)

@@ -8,8 +8,14 @@ count is its own group ("Sandscape God Rays 32"). Twin: core.post.god_rays.
 
 from . import helper as h
 
-VERSION = 1
+VERSION = 2
 TREE_TYPE = "CompositorNodeTree"
+DEFAULT_SAMPLES = 32
+
+
+def description(samples):
+    return (f"God rays, {samples} samples: radial accumulation of Occlusion towards the sun, each sample "
+            "weighted by Weight × Decay^(i−1), times Exposure and Intensity")
 
 
 class Builder:
@@ -21,14 +27,14 @@ class Builder:
     def __init__(self, samples):
         self.samples = int(samples)
         self.NAME = f"Sandscape God Rays {self.samples}"
+        self.DESCRIPTION = description(self.samples)
 
     def build(self, tree):
         build(tree, self.samples)
 
 
 def build(tree, samples):
-    tree.description = (f"God rays, {samples} samples: radial accumulation of Occlusion towards the sun, "
-                        "each sample weighted by Weight × Decay^(i−1), times Exposure and Intensity")
+    tree.description = description(samples)
     h.add_input(tree, "Occlusion", "NodeSocketColor", "Bright where the sun's light is seen (sky, sun "
                 "disc), black where geometry hides it", (0.0, 0.0, 0.0, 1.0))
     h.add_input(tree, "Sun", "NodeSocketVector", "Sun position on screen, 0..1 in x and y",
@@ -55,7 +61,7 @@ def build(tree, samples):
     anchor = h.add_node(tree, "ShaderNodeCombineXYZ", (-1000, -300), "Sun, z = 1", inputs={"Z": 1.0})
     h.link(tree, split.outputs["X"], anchor.inputs["X"])
     h.link(tree, split.outputs["Y"], anchor.inputs["Y"])
-    total = None
+    total, per_sample, sums = None, [], []
     for i in range(1, samples + 1):
         y = -200 * i
         scale = h.add_node(tree, "ShaderNodeMath", (-800, y), f"1 − {i}·D/N", operation="MULTIPLY_ADD",
@@ -76,6 +82,7 @@ def build(tree, samples):
         weighted = h.add_node(tree, "ShaderNodeVectorMath", (300, y), operation="SCALE")
         h.link(tree, sample.outputs[0], weighted.inputs[0])
         h.link(tree, weight.outputs[0], weighted.inputs["Scale"])
+        per_sample += [scale, scaled, uv, sample, falloff, weight, weighted]
         if total is None:
             total = weighted
         else:
@@ -83,8 +90,14 @@ def build(tree, samples):
             h.link(tree, total.outputs[0], added.inputs[0])
             h.link(tree, weighted.outputs[0], added.inputs[1])
             total = added
+            sums.append(added)
     gain = h.math(tree, "MULTIPLY", inputs["Exposure"], inputs["Intensity"], (600, 0), "Exposure × Intensity")
     rays = h.add_node(tree, "ShaderNodeVectorMath", (800, 0), operation="SCALE")
     h.link(tree, total.outputs[0], rays.inputs[0])
     h.link(tree, gain.outputs[0], rays.inputs["Scale"])
     h.link(tree, rays.outputs[0], group_out.inputs["Rays"])
+    h.frame(tree, "Towards the Sun", (coordinates, towards, split, anchor))
+    h.frame(tree, "Samples along the Ray", per_sample)
+    h.frame(tree, "Sum", sums)
+    h.frame(tree, "Exposure × Intensity", (gain, rays))
+    h.arrange(tree)

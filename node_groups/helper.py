@@ -1,8 +1,12 @@
-"""Shared node-group plumbing: versioned, idempotent groups and terse tree building.
+"""Shared node-group plumbing: versioned, idempotent groups, terse tree building, and a layout
+that reads left to right.
 
 A group we build carries two custom properties: GROUP_KEY (the builder's NAME) and
 VERSION_KEY. We find our groups by GROUP_KEY, never by name, so a user's group that
 happens to share the name is left alone.
+
+Builders create nodes anywhere, put the nodes of each stage in a frame (frame()), and end
+with arrange(tree): columns by dependency, frames stacked as bands, no two nodes overlapping.
 """
 
 import bpy
@@ -63,10 +67,15 @@ def _add_socket(tree, in_out, name, socket_type, description, default=None, min_
     return socket
 
 
-def add_node(tree, node_type, location=(0, 0), label=None, inputs=None, **props):
-    """Add a node, set its properties, and set unlinked input defaults by name or index."""
+def add_node(tree, node_type, location=(0, 0), label=None, inputs=None, name=None, **props):
+    """Add a node, set its properties, and set unlinked input defaults by name or index.
+
+    name: a fixed node name, for nodes the bpy layer finds again (labels are the artist's).
+    """
     node = tree.nodes.new(node_type)
     node.location = location
+    if name:
+        node.name = name
     if label:
         node.label = label
     for key, value in props.items():
@@ -94,6 +103,96 @@ def link(tree, from_socket, to_socket):
 
 
 def group_io(tree):
-    """Group Input and Group Output nodes, placed left and right."""
-    return (add_node(tree, "NodeGroupInput", (-900, 0)),
-            add_node(tree, "NodeGroupOutput", (900, 0)))
+    """Group Input and Group Output nodes (arrange() puts them first and last)."""
+    return add_node(tree, "NodeGroupInput"), add_node(tree, "NodeGroupOutput")
+
+
+# ---------------------------------------------------------------- layout
+
+COLUMN_GAP, ROW_GAP, BAND_GAP = 80.0, 30.0, 90.0
+NODE_WIDTH, GROUP_NODE_WIDTH = 160.0, 180.0  # set, not left to defaults that vary between versions
+HEADER, SOCKET_ROW, OPTIONS_ROW = 40.0, 24.0, 34.0
+PLAIN = {"NodeGroupInput", "NodeGroupOutput", "NodeReroute", "ShaderNodeGroup", "CompositorNodeGroup",
+         "GeometryNodeGroup"}
+
+
+def frame(tree, label, nodes):
+    """Put nodes into a labelled frame: one stage of the group, drawn as a box around them."""
+    if not nodes:
+        return None
+    box = tree.nodes.new("NodeFrame")
+    box.label = label
+    box.name = f"Stage: {label}"
+    for node in nodes:
+        node.parent = box
+    return box
+
+
+def node_size(node):
+    """(width, height) a node takes in the editor: its drawn size, else an upper estimate.
+
+    Background sessions draw nothing (dimensions are 0), so the estimate counts the rows a
+    node shows: header, each visible socket, and a row of options for nodes that have them.
+    """
+    if node.dimensions[1] > 0:
+        return float(node.dimensions[0]), float(node.dimensions[1])
+    rows = sum(1 for s in node.outputs if s.enabled and not s.hide) + sum(
+        1 for s in node.inputs if s.enabled and not s.hide and s.type != "CUSTOM")
+    options = 0.0 if node.bl_idname in PLAIN else OPTIONS_ROW * 2
+    return float(node.width), HEADER + SOCKET_ROW * rows + options
+
+
+def arrange(tree):
+    """Place every node: a column per dependency depth (sources left, Group Output right), a
+    band per frame (stacked top to bottom in the order the data flows), nodes stacked in their
+    cell. Returns {node name: (x, y, width, height)}, y being the top edge."""
+    nodes = [n for n in tree.nodes if n.bl_idname != "NodeFrame"]
+    for node in nodes:
+        wide = node.bl_idname.endswith("NodeGroup")
+        node.width = max(GROUP_NODE_WIDTH if wide else NODE_WIDTH, node.bl_width_min)
+    before = {n.name: set() for n in nodes}
+    for link in tree.links:
+        if link.from_node.name in before and link.to_node.name in before:
+            before[link.to_node.name].add(link.from_node.name)
+    column = {}
+
+    def depth(name, seen=()):
+        if name not in column:
+            if name in seen:  # a cycle would be a broken tree; keep it finite
+                return 0
+            column[name] = max((depth(p, (*seen, name)) + 1 for p in before[name]), default=0)
+        return column[name]
+
+    for node in nodes:
+        depth(node.name)
+    last = max(column.values(), default=0)
+    for node in nodes:
+        if node.bl_idname == "NodeGroupOutput":
+            column[node.name] = last + 1
+    band_of = {n.name: (n.parent.name if n.parent is not None else "") for n in nodes}
+    # Unframed nodes (group input and output) on top, then the stages in the order the builder
+    # framed them, which is the order the data flows through them.
+    bands = [""] + [n.name for n in tree.nodes if n.bl_idname == "NodeFrame"]
+    widths = {}
+    for node in nodes:
+        widths[column[node.name]] = max(widths.get(column[node.name], 0.0), node_size(node)[0])
+    x_of, x = {}, 0.0
+    for index in range(max(widths, default=-1) + 1):
+        x_of[index] = x
+        x += widths.get(index, 0.0) + COLUMN_GAP
+    placed, top = {}, 0.0
+    for band in bands:
+        members = [n for n in nodes if band_of[n.name] == band]
+        if not members:
+            continue
+        deepest = 0.0
+        for index in sorted({column[n.name] for n in members}):
+            y = top
+            for node in (n for n in members if column[n.name] == index):  # in creation order
+                width, height = node_size(node)
+                node.location_absolute = (x_of[index], y)
+                placed[node.name] = (x_of[index], y, width, height)
+                y -= height + ROW_GAP
+            deepest = max(deepest, top - y)
+        top -= deepest + BAND_GAP
+    return placed

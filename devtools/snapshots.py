@@ -1,0 +1,100 @@
+"""Snapshots of Sandscape's node groups: interface, nodes (type, label, frame, place, settings,
+unlinked input values) and links, as JSON in tests/snapshots/. A builder that changes its group
+must bump its VERSION (files built by the old one are then rebuilt); the snapshot test fails
+when the group changed and the VERSION did not.
+
+Update after a deliberate change (and a VERSION bump):
+    .venv/bin/python devtools/snapshots.py
+"""
+
+import importlib
+import json
+import pathlib
+import sys
+
+REPO = pathlib.Path(__file__).resolve().parent.parent
+SNAPSHOTS = REPO / "tests" / "snapshots"
+# Node properties that are the editor's state, not what the group computes or how it reads.
+SKIP = {"rna_type", "name", "location", "location_absolute", "width", "height", "dimensions", "select",
+        "show_options", "show_preview", "show_texture", "hide", "mute", "color", "color_tag",
+        "use_custom_color", "session_uid", "internal_links", "inputs", "outputs", "type", "bl_idname",
+        "bl_label", "bl_description", "bl_icon", "bl_static_type", "bl_width_default", "bl_width_min",
+        "bl_width_max", "bl_height_default", "bl_height_min", "bl_height_max", "is_active_output",
+        "warning_propagation", "parent", "label", "shrink", "label_size", "text", "is_dangling_reroute",
+        "width_hidden"}
+
+
+def _value(value):
+    if hasattr(value, "name") and hasattr(value, "bl_rna") and hasattr(value, "users"):
+        return f"<{value.name}>"  # a data-block: its name
+    if isinstance(value, float):
+        return round(value, 6)
+    if isinstance(value, (bool, int, str)) or value is None:
+        return value
+    try:
+        return [_value(v) for v in value]
+    except TypeError:
+        return str(value)
+
+
+def serialize(tree):
+    interface = []
+    for item in tree.interface.items_tree:
+        if item.item_type != "SOCKET":
+            continue
+        entry = {"in_out": item.in_out, "name": item.name, "type": item.socket_type,
+                 "description": item.description}
+        for key in ("default_value", "min_value", "max_value", "subtype"):
+            if hasattr(item, key):
+                entry[key] = _value(getattr(item, key))
+        interface.append(entry)
+    nodes = {}
+    for node in tree.nodes:
+        settings = {}
+        for prop in node.bl_rna.properties:
+            if prop.identifier in SKIP or prop.is_readonly and prop.type != "POINTER":
+                continue
+            if prop.type in {"POINTER", "COLLECTION"} and prop.identifier != "node_tree":
+                continue
+            settings[prop.identifier] = _value(getattr(node, prop.identifier))
+        # Sockets by name: identifiers of the same socket differ between versions ("A", "A_VEC3").
+        inputs = {socket.name: _value(socket.default_value) for socket in node.inputs
+                  if not socket.is_linked and hasattr(socket, "default_value") and socket.enabled}
+        nodes[node.name] = {"type": node.bl_idname, "label": node.label,
+                            "frame": node.parent.name if node.parent else None,
+                            "at": [round(v) for v in node.location_absolute], "settings": settings,
+                            "inputs": inputs}
+    links = sorted([link.from_node.name, link.from_socket.name, link.to_node.name, link.to_socket.name]
+                   for link in tree.links)
+    return {"description": tree.description, "interface": interface, "nodes": nodes, "links": links}
+
+
+def path_for(builder):
+    return SNAPSHOTS / (builder.NAME.lower().replace(" ", "_") + ".json")
+
+
+def build_fresh(bpy, builder):
+    tree = bpy.data.node_groups.new(builder.NAME, builder.TREE_TYPE)
+    builder.build(tree)
+    return tree
+
+
+def main():
+    sys.path.insert(0, str(REPO))
+    from devtools import session
+
+    root = session.isolate()
+    import bpy
+
+    session.install_dev_extension(root)
+    session.reset()
+    SNAPSHOTS.mkdir(parents=True, exist_ok=True)
+    for builder in importlib.import_module(f"{session.MODULE}.node_groups.catalog").builders():
+        snapshot = {"version": builder.VERSION, "group": serialize(build_fresh(bpy, builder))}
+        text = json.dumps(snapshot, indent=1, ensure_ascii=False, sort_keys=True)
+        path_for(builder).write_text(text + "\n")
+        print(f"snapshots: {builder.NAME} v{builder.VERSION} -> {path_for(builder).relative_to(REPO)}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,46 @@
+"""Every node group Sandscape builds, in one table: the node editors' Add menus, the snapshot
+tests and the README read it (Molecular Nodes' node_info table is the model).
+
+Each entry: the builder, and the Add-menu category an artist finds it under (None for
+groups that only Sandscape itself wires up). The editor follows from the builder's TREE_TYPE.
+"""
+
+from . import (
+    dust_field,
+    dust_volume,
+    footprint_height,
+    gated_blur,
+    glint_shade,
+    glints,
+    god_rays,
+    print_markers,
+    region_cut,
+)
+
+GOD_RAYS = god_rays.Builder(god_rays.DEFAULT_SAMPLES)
+
+GROUPS = (
+    (glints, "Sand"),
+    (glint_shade, "Sand"),
+    (footprint_height, "Footprints"),
+    (dust_volume, "Atmosphere"),
+    (dust_field, "Atmosphere"),
+    (gated_blur, "Post Effects"),
+    (GOD_RAYS, "Post Effects"),
+    (region_cut, None),
+    (print_markers, None),
+)
+
+
+def builders():
+    return [builder for builder, _ in GROUPS]
+
+
+def menu_entries(tree_type):
+    """(category, builder) for the groups an artist can add in an editor of this tree type."""
+    return [(category, builder) for builder, category in GROUPS
+            if category is not None and builder.TREE_TYPE == tree_type]
+
+
+def builder_named(name):
+    return next((builder for builder in builders() if builder.NAME == name), None)
