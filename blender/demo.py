@@ -1,4 +1,4 @@
-"""The desert demo scene, built from an empty file by Sandscape's own operators."""
+"""The desert demo scene, built from an empty file with Sandscape's own bpy layer."""
 
 import math
 
@@ -6,13 +6,14 @@ import bpy
 import numpy as np
 
 from ..core import dunes
+from . import atmosphere, footprints, post, presets, sand, walker
 
 TERRAIN_SIZE = (120.0, 60.0)  # wide enough that the camera never sees past the dunes
 TERRAIN_SPACING = 0.25
 FRAMES = (1, 240)
 SUN = (math.radians(6.0), math.radians(70.0))  # low, ahead of the walker and in view
 CAMERA_OFFSET = (-7.0, -4.0, 2.2)  # behind and beside the walker, metres
-SAND = {"threshold": 0.985, "glint_size": 0.012, "facing_power": 4.0, "strength": 60.0, "seed": 1}
+SAND = {"Threshold": 0.985, "Glint Size": 0.012, "Facing Power": 4.0, "Strength": 60.0, "Seed": 1.0}
 
 
 def dune_terrain(collection):
@@ -53,37 +54,40 @@ def follow_camera(scene, walker):
 
 
 def build(context):
-    """Dunes, glinting sand, a walker with footprints, dusty air with a low sun, post effects, camera."""
+    """Dunes, glinting sand, a walker with footprints, dusty air with a low sun, post effects, camera.
+
+    Calls the bpy layer directly with known-good values (operators validate artists' input).
+    """
     scene = context.scene
     scene.frame_start, scene.frame_end = FRAMES
     # Measured (bench/quality.py): raw ray-marched samples beat denoising, which smears glints.
-    bpy.ops.sandscape.apply_quality_preset(preset="PREVIEW")
+    presets.apply(scene, presets.PRESETS["PREVIEW"])
     terrain = dune_terrain(scene.collection)
     context.view_layer.objects.active = terrain
-    bpy.ops.sandscape.add_sand_material(**SAND)
-    footprints = scene.sandscape_footprints
-    footprints.terrain = terrain
-    bpy.ops.sandscape.add_walker()
+    sand.apply(terrain, {**sand.default_glint_values(), **SAND})
+    steps = scene.sandscape_footprints
+    steps.terrain = terrain
+    steps.walker, path = walker.ensure_walker(scene, terrain, *FRAMES)
+    steps.source = "WALKER"
     # The stand-in crosses 80 % of the terrain; the demo walks a quarter of that, about 24 m
     # in 10 s: a brisk walk that stays in the middle of the dunes.
-    path = next(o for o in bpy.data.objects if o.get("sandscape_object") == "walk_path")
     path.scale = (0.25, 0.25, 1.0)
-    footprints.resolution, footprints.depth, footprints.rim = 2048, 0.04, 0.01
-    bpy.ops.sandscape.paint_footprints()
+    steps.resolution, steps.depth, steps.rim = 2048, 0.04, 0.01
+    footprints.paint(scene, steps)
     air = scene.sandscape_atmosphere
     air.sun_elevation, air.sun_azimuth = SUN
     # A wide margin carries the haze to the horizon: a box that ended at the dunes showed the
     # sky's dark ground beyond them.
     air.density, air.dust_density, air.margin = 0.004, 0.01, 150.0
-    bpy.ops.sandscape.add_atmosphere()
-    camera = follow_camera(scene, footprints.walker)
+    atmosphere.apply(scene, air)
+    camera = follow_camera(scene, steps.walker)
     # Exposure -3 below divides the frame by 8; the rays' exposure of 8 keeps them visible.
     scene.sandscape_post.ray_exposure = 8.0
-    bpy.ops.sandscape.add_post_effects()
-    sun = next(o for o in scene.objects if o.type == "LIGHT")
+    post.apply_post_effects(scene, scene.sandscape_post)
+    sun = atmosphere.scene_sun(scene)
     # A sun 6 degrees up shines through a long air path: reddened, as in the sky around it.
     sun.data.energy, sun.data.color, sun.data.angle = 20.0, (1.0, 0.75, 0.5), math.radians(0.6)
     # The sky is in physical units: AgX with a lower exposure keeps the low sun's sky in range.
     scene.view_settings.view_transform = "AgX"
     scene.view_settings.exposure = -3.0
-    return {"terrain": terrain, "camera": camera, "walker": footprints.walker}
+    return {"terrain": terrain, "camera": camera, "walker": steps.walker}

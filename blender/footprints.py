@@ -1,11 +1,18 @@
 """The bpy side of footprints: sample the walker, project prints onto the terrain, keep the
-points object, the print image, the patch object and the terrain's cut modifier.
+print frame, the points object, the print image, the patch object and the terrain's cut.
 
-Everything we make carries OBJECT_KEY (objects) or images.IMAGE_KEY (the image) plus a
-pointer to its terrain, so re-running finds and updates it instead of adding copies.
+Prints live in world terms: contacts drop straight down (world -Z, gravity) onto the evaluated
+terrain in world space, and stride, stance, foot size and depth are world lengths whatever the
+terrain's transform (tilted, stretched, a Y-up import). They are painted in the print frame,
+an empty that is world-aligned, in world units and at the terrain's origin when the prints are
+emitted, and a child of the terrain, so prints ride along when the terrain moves.
+
+Everything we make carries OBJECT_KEY (objects) or IMAGE_KEY (the image) and a pointer to its
+terrain (TERRAIN_KEY), found in the operator's scene: re-running updates instead of copying.
 """
 
 import contextlib
+import hashlib
 import json
 import os
 import tempfile
@@ -13,27 +20,24 @@ import tempfile
 import bmesh
 import bpy
 import numpy as np
-from mathutils import Vector
+from mathutils import Matrix, Vector
 from mathutils.bvhtree import BVHTree
 
 from ..core import footprints as painter
 from ..core import paths
 from ..node_groups import helper as h
 from ..node_groups import print_markers, region_cut
-from . import compat, images
-from . import sand as sand_material
+from . import compat, sand, units
+from . import ownership as own
 
-OBJECT_KEY = "sandscape_object"
-TERRAIN_KEY = "sandscape_terrain"
-POINTS, PATCH = "footprints", "footprint_patch"
-PRINT_MAP = "print_map"
 ATTRIBUTES = {  # point attribute name -> (type, meaning)
     "birth_frame": ("FLOAT", "Frame at which the walker passes the print"),
-    "heading": ("FLOAT", "Yaw of the print's forward axis about the terrain's Z, radians"),
+    "heading": ("FLOAT", "Yaw of the print's forward axis about world Z (the print frame's Z), radians"),
     "side": ("INT", "+1 left foot, -1 right foot, 0 unknown (particle source)"),
     "depth_scale": ("FLOAT", "Multiplies the print's depth and rim (seeded variation)"),
-    "surface_normal": ("FLOAT_VECTOR", "Terrain normal at the print, terrain object space"),
+    "surface_normal": ("FLOAT_VECTOR", "Terrain normal at the print, in the print frame (world axes)"),
 }
+MARKER_RADIUS = 0.03  # metres: the viewport dots
 
 
 class FootprintError(ValueError):
@@ -42,18 +46,12 @@ class FootprintError(ValueError):
 
 # ---------------------------------------------------------------- finding our data
 
-def find_object(kind, terrain):
-    for obj in bpy.data.objects:
-        if obj.get(OBJECT_KEY) == kind and obj.get(TERRAIN_KEY) == terrain:
-            return obj
-    return None
+def find_object(scene, kind, terrain):
+    return own.scene_object(scene, kind, **{own.TERRAIN_KEY: terrain})
 
 
 def find_print_map(terrain):
-    for image in bpy.data.images:
-        if image.get(images.IMAGE_KEY) == PRINT_MAP and image.get(TERRAIN_KEY) == terrain:
-            return image
-    return None
+    return own.image(own.PRINT_MAP, **{own.TERRAIN_KEY: terrain})
 
 
 def find_cut_modifier(terrain):
@@ -76,6 +74,17 @@ def terrain_uncut(terrain):
     finally:
         if modifier is not None:
             modifier.show_viewport, modifier.show_render = state
+
+
+def terrain_problem(terrain):
+    """Why a terrain cannot take prints (not editable, a flat transform), or None."""
+    problem = own.not_editable(terrain)
+    if problem:
+        return problem
+    if abs(terrain.matrix_world.to_3x3().determinant()) < 1e-12:
+        return (f"'{terrain.name}' has a scale of 0 on an axis: the prints' space would be flat. "
+                "Give it a non-zero scale (or apply the scale)")
+    return None
 
 
 # ---------------------------------------------------------------- sampling the scene
@@ -102,7 +111,7 @@ def sample_walker(scene, walker, frames, progress=None):
 
 
 def sample_particles(scene, emitter, frames):
-    """Each particle where it is born: positions (M, 3), birth frames, directions of travel."""
+    """Each particle where it is born: world positions (M, 3), birth frames, directions of travel."""
     kept = scene.frame_current
     found_positions, found_births, found_directions = [], [], []
     previous = None
@@ -140,58 +149,92 @@ def sample_particles(scene, emitter, frames):
                  for found in (found_positions, found_births, found_directions))
 
 
-def project_onto_terrain(terrain, contacts_world, progress=None):
-    """Ray cast each contact straight down (terrain -Z) onto the evaluated terrain.
-
-    Returns terrain-local hit points (N, 3), unit normals (N, 3) and a hit mask (N,).
-    Rays start above the terrain's bounding box, so the topmost surface is found.
-    """
+def evaluated_terrain(terrain):
+    """The terrain's evaluated mesh without our cut, in world space: (vertices (V, 3), polygons)."""
     depsgraph = bpy.context.evaluated_depsgraph_get()
     with terrain_uncut(terrain):
         depsgraph.update()
         evaluated = terrain.evaluated_get(depsgraph)
-        bvh = BVHTree.FromObject(evaluated, depsgraph)
-        top = max(corner[2] for corner in evaluated.bound_box) + 1.0
+        mesh = evaluated.to_mesh()
+        try:
+            local = np.empty(len(mesh.vertices) * 3, np.float32)
+            mesh.vertices.foreach_get("co", local)
+            loops = np.empty(len(mesh.loops), np.int32)
+            mesh.loops.foreach_get("vertex_index", loops)
+            starts = np.empty(len(mesh.polygons), np.int32)
+            mesh.polygons.foreach_get("loop_start", starts)
+            totals = np.empty(len(mesh.polygons), np.int32)
+            mesh.polygons.foreach_get("loop_total", totals)
+        finally:
+            evaluated.to_mesh_clear()
     depsgraph.update()
-    inverse = np.array(terrain.matrix_world.inverted())
+    world = np.array(terrain.matrix_world)
+    vertices = local.reshape(-1, 3).astype(np.float64) @ world[:3, :3].T + world[:3, 3]
+    polygons = [loops[s:s + t].tolist() for s, t in zip(starts, totals, strict=True)]
+    return vertices, polygons
+
+
+def project_down(vertices, polygons, contacts_world, progress=None):
+    """Drop each contact straight down (world -Z) onto the terrain: world hits, up-facing unit
+    normals and a hit mask. Rays start above the terrain's top, so the topmost surface is found.
+    """
+    bvh = BVHTree.FromPolygons([Vector(v) for v in vertices], polygons)
+    top = float(vertices[:, 2].max()) + 1.0
     contacts = np.asarray(contacts_world, dtype=np.float64)
-    local = contacts @ inverse[:3, :3].T + inverse[:3, 3]
-    hits = np.full((len(local), 3), np.nan)
-    normals = np.full((len(local), 3), np.nan)
+    hits = np.full((len(contacts), 3), np.nan)
+    normals = np.full((len(contacts), 3), np.nan)
     down = Vector((0.0, 0.0, -1.0))
-    for index, (x, y, _) in enumerate(local):
+    for index, (x, y, _) in enumerate(contacts):
         location, normal, _, _ = bvh.ray_cast(Vector((x, y, top)), down)
         if location is not None:
             hits[index] = location
             normals[index] = normal if normal.z >= 0 else -normal
         if progress and index % 4096 == 0:
-            progress(index / max(len(local), 1))
+            progress(index / max(len(contacts), 1))
     return hits, normals, ~np.isnan(hits[:, 0])
 
 
-def local_directions(terrain, directions_world):
-    rotation = np.array(terrain.matrix_world.inverted().to_3x3())
-    return np.asarray(directions_world) @ rotation.T
+# ---------------------------------------------------------------- the print frame and the points
+
+def ensure_print_frame(scene, terrain, collection):
+    """The terrain's print frame: an empty, world-aligned and unscaled at the terrain's origin,
+    a child of the terrain. Its space is where prints are emitted, painted and cut."""
+    frame = find_object(scene, own.PRINT_FRAME, terrain)
+    if frame is None:
+        frame = own.mark(bpy.data.objects.new(f"{terrain.name} Print Frame", None), own.OBJECT_KEY,
+                         own.PRINT_FRAME, **{own.TERRAIN_KEY: terrain})
+        collection.objects.link(frame)
+        frame.empty_display_type = "PLAIN_AXES"
+        frame.empty_display_size = units.to_units(scene, 0.25)
+        frame.hide_select = True  # it follows the terrain; paint again to realign it
+    frame.parent = terrain
+    # A full inverse (not loc/rot/scale) cancels any terrain transform, sheared or not.
+    frame.matrix_parent_inverse = terrain.matrix_world.inverted()
+    frame.matrix_basis = Matrix.Translation(terrain.matrix_world.translation)
+    return frame
 
 
-# ---------------------------------------------------------------- the points object
-
-def write_points(terrain, points, collection):
+def write_points(scene, terrain, frame, points, collection):
     """Create or update the footprints object of a terrain: one vertex per print, attributes.
 
-    points: dict of arrays, all in terrain object space (see ATTRIBUTES, plus "co").
+    points: dict of arrays in print-frame space (see ATTRIBUTES, plus "co"). The object is a
+    child of the print frame, so its vertices are frame coordinates.
     """
-    obj = find_object(POINTS, terrain)
+    obj = find_object(scene, own.FOOTPRINTS, terrain)
     if obj is None:
         mesh = bpy.data.meshes.new(f"{terrain.name} Footprints")
-        obj = bpy.data.objects.new(f"{terrain.name} Footprints", mesh)
-        obj[OBJECT_KEY] = POINTS
-        obj[TERRAIN_KEY] = terrain
+        obj = own.mark(bpy.data.objects.new(f"{terrain.name} Footprints", mesh), own.OBJECT_KEY,
+                       own.FOOTPRINTS, **{own.TERRAIN_KEY: terrain})
         collection.objects.link(obj)
         modifier = obj.modifiers.new("Print Markers", "NODES")
         modifier.node_group = h.ensure_group(print_markers)
         obj.hide_render = True  # a marker for the artist, never part of the picture
-    obj.parent = terrain
+    markers = next((m for m in obj.modifiers if m.type == "NODES"), None)
+    if markers is not None:
+        radius = next(i.identifier for i in markers.node_group.interface.items_tree
+                      if getattr(i, "in_out", None) == "INPUT" and i.name == "Radius")
+        compat.set_modifier_input(markers, radius, units.to_units(scene, MARKER_RADIUS))
+    obj.parent = frame
     obj.matrix_parent_inverse.identity()
     obj.matrix_basis.identity()
     mesh = obj.data
@@ -230,7 +273,7 @@ def read_points(obj):
 
 
 def print_axes(points):
-    """Forward and lateral axes of each print, projected onto the terrain's XY plane: (N, 2) each."""
+    """Forward and lateral axes of each print, projected onto the frame's XY plane: (N, 2) each."""
     heading = points["heading"]
     forward = np.stack([np.cos(heading), np.sin(heading), np.zeros_like(heading)], axis=1)
     forward, lateral = paths.surface_frames(forward, points["surface_normal"])
@@ -239,29 +282,28 @@ def print_axes(points):
 
 # ---------------------------------------------------------------- the print image
 
-def write_print_image(terrain, pixels, region, frame_range):
+def write_print_image(scene, terrain, pixels, region, frame_range):
     """Store the painted RGBA floats as our packed, ZIP-compressed 32-bit EXR image.
 
-    Custom properties on the image record the region in the terrain's object space.
+    Custom properties on the image record the region in the print frame's X and Y.
     """
     image = find_print_map(terrain)
     height, width = pixels.shape[:2]
     scratch = bpy.data.images.new("Sandscape Print Scratch", width, height, alpha=True, float_buffer=True)
     scratch.colorspace_settings.name = "Non-Color"
     scratch.pixels.foreach_set(pixels.ravel())
-    settings = bpy.context.scene.render.image_settings
+    settings = scene.render.image_settings
     kept = (settings.file_format, settings.color_depth, settings.exr_codec, settings.color_mode)
     handle, path = tempfile.mkstemp(suffix=".exr", prefix="sandscape-prints-")
     os.close(handle)
     try:
         settings.file_format, settings.color_mode = "OPEN_EXR", "RGBA"
         settings.color_depth, settings.exr_codec = "32", "ZIP"
-        scratch.save_render(path, scene=bpy.context.scene)
+        scratch.save_render(path, scene=scene)
         if image is None:
             image = bpy.data.images.load(path, check_existing=False)
             image.name = f"{terrain.name} Print Map"
-            image[images.IMAGE_KEY] = PRINT_MAP
-            image[TERRAIN_KEY] = terrain
+            own.mark(image, own.IMAGE_KEY, own.PRINT_MAP, **{own.TERRAIN_KEY: terrain})
         else:
             if image.packed_file:
                 image.unpack(method="REMOVE")
@@ -277,8 +319,7 @@ def write_print_image(terrain, pixels, region, frame_range):
         settings.file_format, settings.color_depth, settings.exr_codec, settings.color_mode = kept
         bpy.data.images.remove(scratch)
         os.remove(path)
-    low_x, low_y = region.x0, region.y0
-    image["region_min"] = (low_x, low_y)
+    image["region_min"] = (region.x0, region.y0)
     image["region_size"] = region.extent()
     image["texel"] = region.texel
     image["frame_range"] = tuple(float(f) for f in frame_range)
@@ -287,46 +328,44 @@ def write_print_image(terrain, pixels, region, frame_range):
 
 # ---------------------------------------------------------------- patch and cut
 
-def region_box(image, margin):
-    """The X-Y box, terrain object space, that the patch covers and the terrain loses."""
-    low = np.array(image["region_min"]) - margin
-    high = low + np.array(image["region_size"]) + 2 * margin
-    return low, high
+def region_box(image):
+    """The X-Y box, print-frame space, that the patch covers and the terrain loses."""
+    low = np.array(image["region_min"])
+    return low, low + np.array(image["region_size"])
 
 
-def ensure_patch(terrain, low, high, collection, pixel_size=1.0):
+def ensure_patch(scene, terrain, frame, low, high, collection, pixel_size=1.0):
     """Our patch object: the terrain's faces over the region, adaptively subdivided.
 
-    The terrain keeps its other faces (a Region Cut modifier hides these), so dicing
-    stays where prints are. Subdivision is SIMPLE: a smoothing scheme would move the
-    patch's boundary away from the coarse terrain's edges and open a crack.
+    The terrain keeps its other faces (a Region Cut modifier hides these), so dicing stays
+    where prints are. Subdivision is SIMPLE: a smoothing scheme would move the patch's boundary
+    away from the coarse terrain's edges and open a crack. The patch is a child of the terrain
+    in the terrain's own space, with the terrain's normals (custom normals from the whole
+    terrain), so shading does not change at its border.
     Returns the patch object, or None when no face of the terrain lies in the region.
     """
     depsgraph = bpy.context.evaluated_depsgraph_get()
     with terrain_uncut(terrain):
         depsgraph.update()
-        mesh = bpy.data.meshes.new_from_object(terrain.evaluated_get(depsgraph), depsgraph=depsgraph)
+        evaluated = terrain.evaluated_get(depsgraph)
+        mesh = bpy.data.meshes.new_from_object(evaluated, depsgraph=depsgraph)
     depsgraph.update()
     centres = np.empty(len(mesh.polygons) * 3, np.float32)
     mesh.polygons.foreach_get("center", centres)
-    keep = painter.faces_in_region(centres.reshape(-1, 3), low, high)
-    patch = find_object(PATCH, terrain)
+    to_frame = np.array(frame.matrix_world.inverted() @ terrain.matrix_world)
+    in_frame = centres.reshape(-1, 3).astype(np.float64) @ to_frame[:3, :3].T + to_frame[:3, 3]
+    keep = painter.faces_in_region(in_frame, low, high)
+    patch = find_object(scene, own.PATCH, terrain)
     if not keep.any():
         bpy.data.meshes.remove(mesh)
         if patch is not None:
             bpy.data.objects.remove(patch)
         return None
-    bm = bmesh.new()
-    bm.from_mesh(mesh)
-    bm.faces.ensure_lookup_table()
-    bmesh.ops.delete(bm, geom=[bm.faces[i] for i in np.flatnonzero(~keep)], context="FACES")
-    bm.to_mesh(mesh)
-    bm.free()
+    _keep_faces(mesh, keep)
     mesh.name = f"{terrain.name} Footprint Patch"
     if patch is None:
-        patch = bpy.data.objects.new(f"{terrain.name} Footprint Patch", mesh)
-        patch[OBJECT_KEY] = PATCH
-        patch[TERRAIN_KEY] = terrain
+        patch = own.mark(bpy.data.objects.new(f"{terrain.name} Footprint Patch", mesh), own.OBJECT_KEY,
+                         own.PATCH, **{own.TERRAIN_KEY: terrain})
         collection.objects.link(patch)
         subdivision = patch.modifiers.new("Adaptive Subdivision", "SUBSURF")
         subdivision.subdivision_type = "SIMPLE"
@@ -346,23 +385,40 @@ def ensure_patch(terrain, low, high, collection, pixel_size=1.0):
     return patch
 
 
-def ensure_cut(terrain, low, high):
+def _keep_faces(mesh, keep):
+    """Delete the faces not kept, carrying the whole terrain's vertex normals over as custom
+    normals: the patch's own border vertices would otherwise average only its faces."""
+    smooth = not any(p.use_smooth is False for p in mesh.polygons)
+    normals = np.empty(len(mesh.vertices) * 3, np.float32)
+    mesh.vertices.foreach_get("normal", normals)
+    bm = bmesh.new()
+    bm.from_mesh(mesh)
+    layer = bm.verts.layers.int.new("sandscape_source_vertex")
+    for vertex in bm.verts:
+        vertex[layer] = vertex.index
+    bm.faces.ensure_lookup_table()
+    bmesh.ops.delete(bm, geom=[bm.faces[i] for i in np.flatnonzero(~keep)], context="FACES")
+    source = [vertex[layer] for vertex in bm.verts]
+    bm.verts.layers.int.remove(layer)
+    bm.to_mesh(mesh)
+    bm.free()
+    if smooth:
+        mesh.normals_split_custom_set_from_vertices(normals.reshape(-1, 3)[source].tolist())
+
+
+def ensure_cut(terrain, frame, low, high):
     modifier = find_cut_modifier(terrain)
     if modifier is None:
         modifier = terrain.modifiers.new("Sandscape Footprint Cut", "NODES")
+        modifier.node_group = h.ensure_group(region_cut)
+    elif modifier.node_group.get(h.VERSION_KEY) != region_cut.VERSION:
         modifier.node_group = h.ensure_group(region_cut)
     identifiers = {item.name: item.identifier for item in modifier.node_group.interface.items_tree
                    if item.item_type == "SOCKET" and item.in_out == "INPUT"}
     compat.set_modifier_input(modifier, identifiers["Min"], (float(low[0]), float(low[1]), -1e30))
     compat.set_modifier_input(modifier, identifiers["Max"], (float(high[0]), float(high[1]), 1e30))
+    compat.set_modifier_input(modifier, identifiers["Frame"], frame)
     return modifier
-
-
-# ---------------------------------------------------------------- emit signature
-
-def signature(settings_values):
-    """A stable text of the emit inputs: paint re-emits when they changed."""
-    return json.dumps(settings_values, sort_keys=True, default=str)
 
 
 # ---------------------------------------------------------------- emit and paint
@@ -376,15 +432,6 @@ def frame_range(scene, settings):
     if settings.use_scene_range:
         return scene.frame_start, scene.frame_end
     return settings.frame_start, settings.frame_end
-
-
-def emit_inputs(scene, settings):
-    """What the prints depend on; stored on the points object to tell when to re-emit."""
-    start, end = frame_range(scene, settings)
-    source = settings.walker if settings.source == "WALKER" else settings.particle_object
-    return {"source": settings.source, "object": source.name if source else "",
-            "terrain": settings.terrain.name, "start": start, "end": end, "stride": settings.stride,
-            "stance": settings.stance, "variation": settings.variation, "seed": settings.seed}
 
 
 def is_animated(obj):
@@ -402,10 +449,20 @@ def _stage(progress, low, high):
     return lambda fraction: progress(low + (high - low) * fraction)
 
 
-def emit(scene, settings, progress=None):
-    """Walk the source over the frame range, project prints onto the terrain, write the points.
+def _digest(*arrays):
+    sha = hashlib.sha1()
+    for array in arrays:
+        sha.update(np.ascontiguousarray(array, dtype=np.float64).round(7).tobytes())
+    return sha.hexdigest()
 
-    Raises FootprintError before touching any data. Returns (points object, skipped count).
+
+def walk(scene, settings, progress=None):
+    """Sample the source over the frame range, and everything the prints depend on.
+
+    Returns a dict: the steps (world contacts, forward, side, births), the terrain's evaluated
+    world geometry, and "signature", a text of all of it: paint re-emits when it changed (the
+    walker's motion, the terrain's transform or geometry, or a walk setting).
+    Raises FootprintError before touching any data.
     """
     terrain = settings.terrain
     start, end = frame_range(scene, settings)
@@ -415,68 +472,95 @@ def emit(scene, settings, progress=None):
         if not is_animated(walker):
             raise FootprintError(f"'{walker.name}' is not animated: give it keyframes, a Follow Path "
                                  "constraint or an animated parent, or use Add Walker")
-        positions = sample_walker(scene, walker, frames, _stage(progress, 0.0, 0.5))
+        positions = sample_walker(scene, walker, frames, progress)
         try:
             steps = paths.plan_steps(positions, frames, settings.stride, settings.stance)
         except paths.PathError as error:
             raise FootprintError(f"'{walker.name}': {error} ({start}..{end})") from error
-        contacts, forward, side, births = steps["contact"], steps["forward"], steps["side"], steps["birth"]
+        motion = positions
     else:
         contacts, births, forward = sample_particles(scene, settings.particle_object, frames)
         if len(contacts) == 0:
-            raise FootprintError(f"'{settings.particle_object.name}' emits no particles in {start}..{end}")
-        side = np.zeros(len(contacts), np.int32)
-    hits, normals, landed = project_onto_terrain(terrain, contacts, _stage(progress, 0.5, 1.0))
+            raise FootprintError(f"'{settings.particle_object.name}' emits no particles in "
+                                 f"{start}..{end}")
+        steps = {"contact": contacts, "birth": births, "forward": forward,
+                 "side": np.zeros(len(contacts), np.int32)}
+        motion = np.concatenate([contacts, births[:, None]], axis=1)
+    vertices, polygons = evaluated_terrain(terrain)
+    source = settings.walker if settings.source == "WALKER" else settings.particle_object
+    inputs = {"source": settings.source, "object": source.name, "terrain": terrain.name, "start": start,
+              "end": end, "stride": settings.stride, "stance": settings.stance,
+              "variation": settings.variation, "seed": settings.seed, "motion": _digest(motion),
+              "placement": _digest(np.array(terrain.matrix_world), vertices)}
+    return {"steps": steps, "vertices": vertices, "polygons": polygons,
+            "signature": json.dumps(inputs, sort_keys=True, default=str)}
+
+
+def emit(scene, settings, progress=None, walked=None):
+    """Walk the source over the frame range, drop prints onto the terrain, write the points.
+
+    Raises FootprintError before touching any data. Returns (points object, skipped count).
+    """
+    walked = walked or walk(scene, settings, _stage(progress, 0.0, 0.5))
+    terrain, steps = settings.terrain, walked["steps"]
+    hits, normals, landed = project_down(walked["vertices"], walked["polygons"], steps["contact"],
+                                         _stage(progress, 0.5, 1.0))
     if not landed.any():
         raise FootprintError(f"No print lands on '{terrain.name}': the walk never crosses it")
-    forward_local = local_directions(terrain, forward)
-    rng = np.random.default_rng(settings.seed)
-    scale = 1.0 + settings.variation * rng.uniform(-1.0, 1.0, len(contacts))
-    points = {"co": hits[landed], "birth_frame": births[landed],
-              "heading": np.arctan2(forward_local[landed, 1], forward_local[landed, 0]),
-              "side": side[landed], "depth_scale": scale[landed], "surface_normal": normals[landed]}
     collection = terrain.users_collection[0] if terrain.users_collection else scene.collection
-    obj = write_points(terrain, points, collection)
-    obj["emitted_from"] = signature(emit_inputs(scene, settings))
+    frame = ensure_print_frame(scene, terrain, collection)
+    origin = np.array(frame.matrix_world.translation)
+    forward = np.asarray(steps["forward"], dtype=np.float64)
+    rng = np.random.default_rng(settings.seed)
+    scale = 1.0 + settings.variation * rng.uniform(-1.0, 1.0, len(hits))
+    points = {"co": hits[landed] - origin, "birth_frame": np.asarray(steps["birth"])[landed],
+              "heading": np.arctan2(forward[landed, 1], forward[landed, 0]),
+              "side": np.asarray(steps["side"])[landed], "depth_scale": scale[landed],
+              "surface_normal": normals[landed]}
+    obj = write_points(scene, terrain, frame, points, collection)
+    obj["emitted_from"] = walked["signature"]
     obj["skipped"] = int((~landed).sum())
     return obj, int((~landed).sum())
 
 
 def paint(scene, settings, progress=None):
-    """Emit if the inputs changed (or nothing was emitted), then paint, store and wire up.
-
-    Returns a dict of what was done, for the report.
+    """Emit if anything the prints depend on changed (or nothing was emitted), then paint, store
+    and wire up. Returns a dict of what was done, for the report.
     """
     terrain = settings.terrain
-    points_obj = find_object(POINTS, terrain)
-    emitted = points_obj is None or points_obj.get("emitted_from") != signature(emit_inputs(scene, settings))
+    walked = walk(scene, settings, _stage(progress, 0.0, 0.4))
+    points_obj = find_object(scene, own.FOOTPRINTS, terrain)
+    frame = find_object(scene, own.PRINT_FRAME, terrain)
+    emitted = points_obj is None or frame is None or points_obj.get("emitted_from") != walked["signature"]
     if emitted:
-        points_obj, _ = emit(scene, settings, _stage(progress, 0.0, 0.6))
+        points_obj, _ = emit(scene, settings, _stage(progress, 0.4, 0.6), walked)
+        frame = find_object(scene, own.PRINT_FRAME, terrain)
     points = read_points(points_obj)
     if len(points["co"]) == 0:
         raise FootprintError(f"'{points_obj.name}' holds no prints to paint")
     sole = sole_from(settings)
     centres = points["co"][:, :2]
-    region = painter.fit_region(centres, sole.reach(), settings.resolution, margin=0.05 + sole.rim_width)
+    region = painter.fit_region(centres, sole.reach(), settings.resolution,
+                                margin=units.to_units(scene, 0.05) + sole.rim_width)
     forward, lateral = print_axes(points)
     start, end = frame_range(scene, settings)
     pixels = painter.paint(centres, forward, lateral, points["birth_frame"], points["depth_scale"], region,
                            sole, (start, end))
     if progress:
         progress(0.9)
-    image = write_print_image(terrain, pixels, region, (start, end))
-    material = sand_material.find_sand_material(terrain)
+    image = write_print_image(scene, terrain, pixels, region, (start, end))
+    material = sand.find_sand_material(terrain)
     added_material = material is None
     if added_material:
-        material = sand_material.assign_new_material(terrain)
-        sand_material.update_material(material, sand_material.default_glint_values())
-    sand_material.attach_footprints(material, image, terrain, {
+        material = sand.assign_new_material(terrain)
+        sand.update_material(material, sand.default_glint_values())
+    sand.attach_footprints(material, image, frame, {
         "Depth": settings.depth, "Rim": settings.rim, "Frame Start": float(start), "Frame End": float(end),
-        "Noise Amount": settings.noise_amount})
-    low, high = region_box(image, 0.0)
+        "Noise Amount": settings.noise_amount, "Noise Scale": 40.0 * units.metres_per_unit(scene)})
+    low, high = region_box(image)
     collection = terrain.users_collection[0] if terrain.users_collection else scene.collection
-    patch = ensure_patch(terrain, low, high, collection, settings.dicing_pixel_size)
-    ensure_cut(terrain, low, high)
+    patch = ensure_patch(scene, terrain, frame, low, high, collection, settings.dicing_pixel_size)
+    ensure_cut(terrain, frame, low, high)
     return {"prints": len(points["co"]), "skipped": int(points_obj.get("skipped", 0)), "emitted": emitted,
             "image": image, "size": (region.width, region.height), "texel": region.texel,
             "memory": pixels.nbytes, "packed": image.packed_file.size, "patch": patch,

@@ -6,12 +6,10 @@ rerouted, so a decision is easy to undo by hand (and Ctrl+Z undoes the whole ope
 """
 
 import numpy as np
-from bpy_extras import anim_utils
 from mathutils import Vector
 
-from . import atmosphere
-from . import post as post_effects
-from . import sand as sand_material
+from . import ownership as own
+from . import post, sand
 
 VOLUME_SHADERS = {"ShaderNodeVolumeScatter", "ShaderNodeVolumeAbsorption", "ShaderNodeVolumePrincipled",
                   "ShaderNodeVolumeCoefficients"}
@@ -103,7 +101,7 @@ def _seen_by_camera(scene, obj):
         for frame in sorted({scene.frame_start, (scene.frame_start + scene.frame_end) // 2, scene.frame_end}):
             scene.frame_set(frame)
             corners = np.array([obj.matrix_world @ Vector(c) for c in obj.bound_box])
-            clip = np.c_[corners, np.ones(8)] @ atmosphere.view_projection(scene, camera).T
+            clip = np.c_[corners, np.ones(8)] @ post.view_projection(scene, camera).T
             w = clip[:, 3]
             if (w > 0).all():
                 ndc = clip[:, :2] / w[:, None]
@@ -134,13 +132,13 @@ def _idle_adaptive_subdivision(scene):
 def _dark_glints(scene):
     seen = set()
     for obj in _renderable(scene):
-        material = sand_material.find_sand_material(obj)
-        node = sand_material.glint_node(material)
+        material = sand.find_sand_material(obj)
+        node = sand.glint_node(material)
         if node is None or material.name in seen or node.inputs["Strength"].default_value != 0:
             continue
         seen.add(material.name)
         tree = material.node_tree
-        add = next((n for n in tree.nodes if n.bl_idname == "ShaderNodeAddShader"), None)
+        add = own.node(tree, sand.GLINTS_ADDED)
         if add is None or not add.outputs[0].is_linked:
             continue
         yield Decision(f"'{material.name}': glint strength 0; the glint branch is bypassed",
@@ -155,10 +153,8 @@ def _bypass(tree, add):
 
 
 def _idle_god_rays(scene):
-    tree = scene.compositing_node_group
-    if tree is None or not tree.get(post_effects.TREE_KEY):
-        return
-    rays = post_effects.rays_node(tree)
+    tree = own.scene_compositor(scene)
+    rays = post.rays_node(tree)
     if rays is None:
         return
     reason = None
@@ -171,23 +167,15 @@ def _idle_god_rays(scene):
 
 
 def _always_zero(tree, rays):
-    action = tree.animation_data.action if tree.animation_data else None
-    if action is None:
+    keyed = post.keyed_curve(tree)
+    if keyed is None:
         return rays.inputs["Intensity"].default_value == 0
-    slot = tree.animation_data.action_slot
-    bag = anim_utils.action_get_channelbag_for_slot(action, slot)
-    path = rays.inputs["Intensity"].path_from_id("default_value")
-    curve = next((c for c in bag.fcurves if c.data_path == path), None)
-    if curve is None:
-        return rays.inputs["Intensity"].default_value == 0
-    values = np.empty(len(curve.keyframe_points) * 2, np.float32)
-    curve.keyframe_points.foreach_get("co", values)
-    return bool((values[1::2] == 0).all())
+    return all(intensity == 0 for *_, intensity in keyed)
 
 
 def _drop_rays(scene):
     scene.sandscape_post.use_god_rays = False
-    atmosphere.apply_post_effects(scene, scene.sandscape_post)
+    post.apply_post_effects(scene, scene.sandscape_post)
 
 
 def _idle_volume_bounces(scene, found):

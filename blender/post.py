@@ -1,23 +1,36 @@
-"""The scene's compositor tree: Render Layers -> gated blur of the scattered light -> god rays.
+"""The scene's compositor tree: Render Layers -> gated blur of the scattered light -> god rays,
+with the render's alpha kept.
 
-Not a shared group but the tree on scene.compositing_node_group, rebuilt from the settings
-on every run (an effect switched off is absent, not bypassed). Its parts are the versioned
-groups Sandscape Gated Blur and Sandscape God Rays N.
+Not a shared group but the tree on scene.compositing_node_group, one per scene, rebuilt from the
+settings on every run (an effect switched off is absent, not bypassed). Its parts are the
+versioned groups Sandscape Gated Blur and Sandscape God Rays N.
+
+The god rays need the sun's place on screen on every frame: it is keyframed, so a render farm
+without Sandscape renders it. While the extension is on, the keys are brought up to date when
+the file is saved and when a render starts (the camera, lens, resolution or frame range may
+have changed since Add Post Effects ran).
 """
 
+import bpy
+import numpy as np
+from bpy.app.handlers import persistent
+
+from ..core import post
 from ..node_groups import gated_blur, god_rays
 from ..node_groups import helper as h
+from . import atmosphere
+from . import ownership as own
 
-TREE_KEY = "sandscape_compositor"
 SUN_COLOR = (1.0, 0.93, 0.8, 1.0)
+SUN_KEY, RAYS = "Sandscape Sun Key", "Sandscape God Rays"  # node names
 
 
 def rays_node(tree):
-    for node in tree.nodes:
-        group = getattr(node, "node_tree", None)
-        if group is not None and str(group.get(h.GROUP_KEY, "")).startswith("Sandscape God Rays"):
-            return node
-    return None
+    return own.node(tree, RAYS)
+
+
+def sun_key_node(tree):
+    return own.node(tree, SUN_KEY)
 
 
 def build(tree, settings):
@@ -26,78 +39,82 @@ def build(tree, settings):
     if not tree.interface.items_tree:
         h.add_output(tree, "Image", "NodeSocketColor", "The composited frame")
     tree.description = "Sandscape post effects: gated blur of the scattered light, god rays"
-    layers = h.add_node(tree, "CompositorNodeRLayers", (-1200, 0))
-    output = h.add_node(tree, "NodeGroupOutput", (900, 0))
+    layers = h.add_node(tree, "CompositorNodeRLayers", name="Sandscape Render Layers")
+    output = h.add_node(tree, "NodeGroupOutput", name="Sandscape Composite")
     image = layers.outputs["Image"]
     if settings.use_blur:
-        passes = h.add_node(tree, "ShaderNodeVectorMath", (-1000, -300), "Volume Passes", operation="ADD")
+        passes = h.add_node(tree, "ShaderNodeVectorMath", label="Volume Passes", operation="ADD")
         h.link(tree, layers.outputs["Volume Direct"], passes.inputs[0])
         h.link(tree, layers.outputs["Volume Indirect"], passes.inputs[1])
         # The passes can exceed the combined image in a pixel (751 negative pixels in a demo
         # frame; indirect sample clamping is a likely cause): never take out more than it holds.
-        volume = h.add_node(tree, "ShaderNodeVectorMath", (-900, -300), "Scattered Light",
-                            operation="MINIMUM")
+        volume = h.add_node(tree, "ShaderNodeVectorMath", label="Scattered Light", operation="MINIMUM")
         h.link(tree, passes.outputs[0], volume.inputs[0])
         h.link(tree, image, volume.inputs[1])
-        blur = h.add_node(tree, "CompositorNodeGroup", (-650, -300), "Gated Blur",
+        blur = h.add_node(tree, "CompositorNodeGroup", name="Sandscape Gated Blur", label="Gated Blur",
                           node_tree=h.ensure_group(gated_blur), inputs={"Threshold": settings.blur_threshold})
         h.link(tree, volume.outputs[0], blur.inputs["Image"])
         # Geometry stays sharp: only the scattered light is swapped for its blurred self.
-        without = h.add_node(tree, "ShaderNodeVectorMath", (-650, 0), "Image − Scattered",
-                             operation="SUBTRACT")
+        without = h.add_node(tree, "ShaderNodeVectorMath", label="Image − Scattered", operation="SUBTRACT")
         h.link(tree, image, without.inputs[0])
         h.link(tree, volume.outputs[0], without.inputs[1])
-        back = h.add_node(tree, "ShaderNodeVectorMath", (-400, 0), "+ Blurred Scattered", operation="ADD")
+        back = h.add_node(tree, "ShaderNodeVectorMath", label="+ Blurred Scattered", operation="ADD")
         h.link(tree, without.outputs[0], back.inputs[0])
         h.link(tree, blur.outputs["Image"], back.inputs[1])
         image = back.outputs[0]
     if settings.use_god_rays:
-        rays = h.add_node(tree, "CompositorNodeGroup", (300, -400), "God Rays",
+        rays = h.add_node(tree, "CompositorNodeGroup", name=RAYS, label="God Rays",
                           node_tree=h.ensure_group(god_rays.Builder(settings.samples)),
                           inputs={"Density": settings.ray_density, "Weight": settings.ray_weight,
                                   "Decay": settings.ray_decay, "Exposure": settings.ray_exposure})
         h.link(tree, _occlusion(tree, layers, rays, settings.disc_radius), rays.inputs["Occlusion"])
-        total = h.add_node(tree, "ShaderNodeVectorMath", (600, 0), "+ God Rays", operation="ADD")
+        total = h.add_node(tree, "ShaderNodeVectorMath", label="+ God Rays", operation="ADD")
         h.link(tree, image, total.inputs[0])
         h.link(tree, rays.outputs["Rays"], total.inputs[1])
         image = total.outputs[0]
-    h.link(tree, image, output.inputs[0])
+    # Vector maths leave alpha at 1: the render's own alpha goes back on (Film > Transparent).
+    alpha = h.add_node(tree, "CompositorNodeSetAlpha", name="Sandscape Keep Alpha", label="Keep Alpha",
+                       inputs={"Type": "Replace Alpha"})
+    h.link(tree, image, alpha.inputs["Image"])
+    h.link(tree, layers.outputs["Alpha"], alpha.inputs["Alpha"])
+    h.link(tree, alpha.outputs[0], output.inputs[0])
+    h.arrange(tree, set_widths=False)
     return tree
 
 
 def _occlusion(tree, layers, rays, radius):
     """Sun colour inside a soft disc of `radius` (frame heights) around the sun, where sky is seen."""
-    coordinates = h.add_node(tree, "CompositorNodeImageCoordinates", (-900, -700))
+    coordinates = h.add_node(tree, "CompositorNodeImageCoordinates")
     h.link(tree, layers.outputs["Image"], coordinates.inputs["Image"])
     # The frame's size in pixels as a float vector: (1, 1) relative to each dimension. Not Image
     # Info's Dimensions, an integer vector in 5.2 whose link Blender 5.0 drops when it opens the file.
-    info = h.add_node(tree, "CompositorNodeRelativeToPixel", (-900, -900), "Frame Size",
-                      data_type="VECTOR", reference_dimension="PER_DIMENSION")
+    info = h.add_node(tree, "CompositorNodeRelativeToPixel", label="Frame Size", data_type="VECTOR",
+                      reference_dimension="PER_DIMENSION")
     info.inputs["Vector Value"].default_value = (1.0, 1.0)
     h.link(tree, layers.outputs["Image"], info.inputs["Image"])
-    size = h.add_node(tree, "ShaderNodeSeparateXYZ", (-700, -900))
+    size = h.add_node(tree, "ShaderNodeSeparateXYZ")
     h.link(tree, info.outputs["Vector Value"], size.inputs[0])
-    aspect = h.math(tree, "DIVIDE", size.outputs["X"], size.outputs["Y"], (-500, -900), "Aspect")
-    offset = h.add_node(tree, "ShaderNodeVectorMath", (-700, -700), operation="SUBTRACT")
+    aspect = h.math(tree, "DIVIDE", size.outputs["X"], size.outputs["Y"], label="Aspect")
+    offset = h.add_node(tree, "ShaderNodeVectorMath", operation="SUBTRACT")
     h.link(tree, coordinates.outputs["Normalized"], offset.inputs[0])
-    sun = h.add_node(tree, "ShaderNodeCombineXYZ", (-900, -1100), "Sun (keyed)")
+    sun = h.add_node(tree, "ShaderNodeCombineXYZ", name=SUN_KEY, label="Sun (keyed)")
     h.link(tree, sun.outputs[0], offset.inputs[1])
-    split = h.add_node(tree, "ShaderNodeSeparateXYZ", (-500, -700))
+    split = h.add_node(tree, "ShaderNodeSeparateXYZ")
     h.link(tree, offset.outputs[0], split.inputs[0])
-    wide = h.math(tree, "MULTIPLY", split.outputs["X"], aspect.outputs[0], (-300, -700), "dx × aspect")
-    square = h.add_node(tree, "ShaderNodeCombineXYZ", (-150, -700))
+    wide = h.math(tree, "MULTIPLY", split.outputs["X"], aspect.outputs[0], label="dx × aspect")
+    square = h.add_node(tree, "ShaderNodeCombineXYZ")
     h.link(tree, wide.outputs[0], square.inputs["X"])
     h.link(tree, split.outputs["Y"], square.inputs["Y"])
-    distance = h.add_node(tree, "ShaderNodeVectorMath", (0, -700), operation="LENGTH")
+    distance = h.add_node(tree, "ShaderNodeVectorMath", operation="LENGTH")
     h.link(tree, square.outputs[0], distance.inputs[0])
-    disc = h.add_node(tree, "ShaderNodeMapRange", (150, -700), "Sun Disc", interpolation_type="SMOOTHSTEP",
+    disc = h.add_node(tree, "ShaderNodeMapRange", label="Sun Disc", interpolation_type="SMOOTHSTEP",
                       inputs={"From Min": radius, "From Max": radius * 0.5, "To Min": 0.0, "To Max": 1.0})
     h.link(tree, distance.outputs["Value"], disc.inputs["Value"])
-    sky = h.add_node(tree, "CompositorNodeRGBToBW", (-700, -500))
+    sky = h.add_node(tree, "CompositorNodeRGBToBW")
     h.link(tree, layers.outputs["Environment"], sky.inputs[0])
-    seen = h.math(tree, "GREATER_THAN", sky.outputs[0], 0.0, (-500, -500), "Sky Seen")
-    both = h.math(tree, "MULTIPLY", seen.outputs[0], disc.outputs["Result"], (300, -600), "Disc × Sky")
-    tint = h.add_node(tree, "ShaderNodeVectorMath", (450, -600), "Sun Colour", operation="SCALE",
+    seen = h.math(tree, "GREATER_THAN", sky.outputs[0], 0.0, label="Sky Seen")
+    both = h.math(tree, "MULTIPLY", seen.outputs[0], disc.outputs["Result"], label="Disc × Sky")
+    tint = h.add_node(tree, "ShaderNodeVectorMath", label="Sun Colour", operation="SCALE",
                       inputs={0: SUN_COLOR[:3]})
     h.link(tree, both.outputs[0], tint.inputs["Scale"])
     # The keyed sun position drives the rays as well: one source of truth per frame.
@@ -105,5 +122,149 @@ def _occlusion(tree, layers, rays, radius):
     return tint.outputs[0]
 
 
-def sun_key_node(tree):
-    return next(n for n in tree.nodes if n.label == "Sun (keyed)")
+# ---------------------------------------------------------------- the sun on screen, keyed
+
+def view_projection(scene, camera):
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    render = scene.render
+    width = max(render.resolution_x * render.resolution_percentage // 100, 1)
+    height = max(render.resolution_y * render.resolution_percentage // 100, 1)
+    projection = np.array(camera.calc_matrix_camera(
+        depsgraph, x=width, y=height, scale_x=render.pixel_aspect_x, scale_y=render.pixel_aspect_y))
+    return projection @ np.array(camera.matrix_world.inverted())
+
+
+def sun_curve(scene, sun, fade):
+    """[(frame, u, v, intensity)] of the sun seen by the scene camera on every frame of the range."""
+    kept = scene.frame_current
+    curve = []
+    try:
+        for frame in range(scene.frame_start, scene.frame_end + 1):
+            scene.frame_set(frame)
+            direction = np.array(sun.matrix_world.col[2][:3])
+            (u, v), in_front = post.screen_position(view_projection(scene, scene.camera), direction)
+            intensity = post.sun_intensity((u, v), in_front, fade)
+            if not in_front or not np.isfinite((u, v)).all():
+                u, v = 0.5, 0.5  # any finite place: the intensity is 0
+            curve.append((frame, float(u), float(v), float(intensity)))
+    finally:
+        scene.frame_set(kept)
+    return curve
+
+
+def key_sun(tree, curve):
+    """Keyframes, not a driver: a render farm needs no scripts."""
+    sun_node, rays = sun_key_node(tree), rays_node(tree)
+    if tree.animation_data is not None:
+        tree.animation_data_clear()
+    sockets = (sun_node.inputs["X"], sun_node.inputs["Y"], rays.inputs["Intensity"])
+    for frame, *values in curve:
+        for socket, value in zip(sockets, values, strict=True):
+            socket.default_value = value
+            socket.keyframe_insert("default_value", frame=frame)
+
+
+def keyed_curve(tree):
+    """The (frame, u, v, intensity) keys the tree holds now, or None."""
+    action = tree.animation_data.action if tree.animation_data else None
+    if action is None:
+        return None
+    from bpy_extras import anim_utils
+
+    bag = anim_utils.action_get_channelbag_for_slot(action, tree.animation_data.action_slot)
+    sun_node, rays = sun_key_node(tree), rays_node(tree)
+    paths = [socket.path_from_id("default_value")
+             for socket in (sun_node.inputs["X"], sun_node.inputs["Y"], rays.inputs["Intensity"])]
+    columns = []
+    for path in paths:
+        fcurve = next((c for c in bag.fcurves if c.data_path == path), None)
+        if fcurve is None:
+            return None
+        values = np.empty(len(fcurve.keyframe_points) * 2, np.float64)
+        fcurve.keyframe_points.foreach_get("co", values)
+        columns.append(values.reshape(-1, 2))
+    if len({len(c) for c in columns}) != 1:
+        return None
+    return [(int(round(f)), u, v, i) for (f, u), (_, v), (_, i) in zip(*columns, strict=True)]
+
+
+def refresh_sun_keys(scene):
+    """Re-key the sun when what the camera sees of it changed; True when the keys were rewritten."""
+    tree = own.scene_compositor(scene)
+    if tree is None or rays_node(tree) is None or sun_key_node(tree) is None:
+        return False
+    sun = atmosphere.scene_sun(scene)
+    if sun is None or scene.camera is None:
+        return False
+    fade = tree.get("fade", 0.25)
+    curve = sun_curve(scene, sun, fade)
+    keyed = keyed_curve(tree)
+    if keyed is not None and len(keyed) == len(curve) and np.allclose(
+            np.array(keyed), np.array(curve), atol=1e-6, rtol=0.0):
+        return False
+    key_sun(tree, curve)
+    return True
+
+
+@persistent
+def _refresh_all(*_):
+    for scene in bpy.data.scenes:
+        if scene.library is None:
+            refresh_sun_keys(scene)
+
+
+HANDLERS = (bpy.app.handlers.save_pre, bpy.app.handlers.render_init)
+
+
+def register():
+    for handlers in HANDLERS:
+        if _refresh_all not in handlers:
+            handlers.append(_refresh_all)
+
+
+def unregister():
+    for handlers in HANDLERS:
+        if _refresh_all in handlers:
+            handlers.remove(_refresh_all)
+
+
+# ---------------------------------------------------------------- the operator's work
+
+def apply_post_effects(scene, settings):
+    """This scene's compositor tree, built for the settings; a user's tree is kept aside."""
+    current = scene.compositing_node_group
+    ours = own.scene_compositor(scene)
+    replaced = None
+    if current is not None and ours is None:
+        replaced = current
+        current.use_fake_user = True
+    elif ours is not None and any(other.compositing_node_group == ours for other in bpy.data.scenes
+                                  if other != scene):
+        ours = None  # shared with another scene: this scene gets its own
+    if not (settings.use_blur or settings.use_god_rays):
+        if ours is not None:
+            previous = bpy.data.node_groups.get(ours.get("replaced_tree", ""))
+            scene.compositing_node_group = previous
+            bpy.data.node_groups.remove(ours)
+        return {"tree": None, "replaced": replaced, "curve": [], "switched_engine": False}
+    if ours is None:
+        ours = own.mark(bpy.data.node_groups.new("Sandscape Post Effects", "CompositorNodeTree"),
+                        own.TREE_KEY, True)
+    if replaced is not None:
+        ours["replaced_tree"] = replaced.name
+    # The volume and environment passes are Cycles passes.
+    switched_engine = scene.render.engine != "CYCLES"
+    scene.render.engine = "CYCLES"
+    for view_layer in scene.view_layers:
+        view_layer.cycles.use_pass_volume_direct = settings.use_blur
+        view_layer.cycles.use_pass_volume_indirect = settings.use_blur
+        view_layer.use_pass_environment = settings.use_god_rays
+    build(ours, settings)
+    ours["fade"] = settings.fade
+    scene.compositing_node_group = ours
+    scene.render.use_compositing = True
+    curve = []
+    if settings.use_god_rays:
+        curve = sun_curve(scene, atmosphere.scene_sun(scene), settings.fade)
+        key_sun(ours, curve)
+    return {"tree": ours, "replaced": replaced, "curve": curve, "switched_engine": switched_engine}

@@ -1,19 +1,26 @@
-"""The Sandscape sand material: a rough sand-coloured base plus the glint emission.
+"""The Sandscape sand material: a rough sand-coloured base plus the glint emission, and the
+footprint displacement when prints are painted; the seeded glint-noise image.
 
-The material is ours when it carries MATERIAL_KEY; a user's material, even one named
-like ours, is never looked at. Re-running updates our material in place.
+The material is ours when it carries MATERIAL_KEY = "sand"; a user's material, even one named
+like ours, is never looked at. Re-running updates our material in place. Inside it, group
+nodes are found by their group's key and the other nodes by their node names.
 """
 
 import bpy
+import numpy as np
 
+from ..core import glints as glint_twin
 from ..node_groups import footprint_height, glint_shade, glints
 from ..node_groups import helper as h
+from . import ownership as own
 
-MATERIAL_KEY = "sandscape_material"
-KIND = "sand"
 SAND_COLOR = (0.62, 0.45, 0.27, 1.0)
 SAND_ROUGHNESS = 0.9
 GLINT_INPUTS = ("Threshold", "Glint Size", "Facing Power", "Color", "Strength", "Seed")
+# Node names inside our material.
+PRINT_SPACE, PRINT_REGION = "Sandscape Print Space", "Sandscape Print Region"
+PRINT_MAP = "Sandscape Print Map"
+GLINT_NOISE, GLINTS_ADDED = "Sandscape Glint Noise", "Sandscape Sand + Glints"
 
 
 def default_glint_values():
@@ -23,10 +30,7 @@ def default_glint_values():
 
 def find_sand_material(obj):
     """Our sand material in one of the object's slots, or None."""
-    for slot in getattr(obj, "material_slots", ()):
-        if slot.material is not None and slot.material.get(MATERIAL_KEY) == KIND:
-            return slot.material
-    return None
+    return own.slot_material(obj, own.SAND)
 
 
 def _group_node(material, group_names):
@@ -56,10 +60,26 @@ def image_node(material):
     return node.inputs["Noise"].links[0].from_node
 
 
+def read_settings(material):
+    """What the material holds now, in the sand operator's terms (its invoke() starts from it)."""
+    node = glint_node(material)
+    if node is None:
+        return {}
+    values = {name: node.inputs[name].default_value for name in GLINT_INPUTS if name in node.inputs}
+    image = image_node(material)
+    settings = {"source": "IMAGE" if image is not None else "PROCEDURAL"}
+    for name, value in values.items():
+        settings[name.lower().replace(" ", "_")] = tuple(value) if hasattr(value, "__len__") else value
+    if "seed" in settings:
+        settings["seed"] = int(round(settings["seed"]))
+    if image is not None and image.image is not None:
+        settings["image"] = image.image.name
+    return settings
+
+
 def assign_new_material(obj):
     """A new sand material on the object; the user's materials keep their slots and data."""
-    material = bpy.data.materials.new("Sandscape Sand")
-    material[MATERIAL_KEY] = KIND
+    material = own.mark(bpy.data.materials.new("Sandscape Sand"), own.MATERIAL_KEY, own.SAND)
     mesh = obj.data
     had_slots = len(mesh.materials) > 0
     mesh.materials.append(material)
@@ -69,6 +89,18 @@ def assign_new_material(obj):
         mesh.update()
     obj.active_material_index = len(obj.material_slots) - 1
     return material
+
+
+def apply(obj, values, image=None):
+    """Our sand on the object, added or updated. Returns (material, whether it was added)."""
+    material = find_sand_material(obj)
+    added = material is None
+    if added:
+        material = assign_new_material(obj)
+    update_material(material, values, image)
+    for unused in [i for i in bpy.data.images if i.get(own.IMAGE_KEY) == own.GLINT_NOISE and i.users == 0]:
+        bpy.data.images.remove(unused)  # ours, for another seed or size, and nothing shows it any more
+    return material, added
 
 
 def update_material(material, values, image=None):
@@ -98,23 +130,25 @@ def update_material(material, values, image=None):
 def _build_tree(material, image):
     tree = material.node_tree
     tree.nodes.clear()
-    output = h.add_node(tree, "ShaderNodeOutputMaterial", (600, 0))
-    base = h.add_node(tree, "ShaderNodeBsdfPrincipled", (0, 250), "Sand",
+    output = h.add_node(tree, "ShaderNodeOutputMaterial", name="Sandscape Output")
+    base = h.add_node(tree, "ShaderNodeBsdfPrincipled", name="Sandscape Sand BSDF", label="Sand",
                       inputs={"Base Color": SAND_COLOR, "Roughness": SAND_ROUGHNESS})
     if image is None:
-        glint = h.add_node(tree, "ShaderNodeGroup", (0, -250), node_tree=h.ensure_group(glints))
+        glint = h.add_node(tree, "ShaderNodeGroup", name="Sandscape Glints", node_tree=h.ensure_group(glints))
     else:
-        glint = h.add_node(tree, "ShaderNodeGroup", (0, -250), node_tree=h.ensure_group(glint_shade))
-        uv = h.add_node(tree, "ShaderNodeTexCoord", (-500, -250))
-        texture = h.add_node(tree, "ShaderNodeTexImage", (-300, -250), "Glint Noise",
+        glint = h.add_node(tree, "ShaderNodeGroup", name="Sandscape Glints",
+                           node_tree=h.ensure_group(glint_shade))
+        uv = h.add_node(tree, "ShaderNodeTexCoord", name="Sandscape Glint UV")
+        texture = h.add_node(tree, "ShaderNodeTexImage", name=GLINT_NOISE, label="Glint Noise",
                              interpolation="Closest", extension="REPEAT", image=image)
         h.link(tree, uv.outputs["UV"], texture.inputs["Vector"])
         h.link(tree, texture.outputs["Color"], glint.inputs["Noise"])
     glint.label = "Glints"
-    add = h.add_node(tree, "ShaderNodeAddShader", (350, 0))
+    add = h.add_node(tree, "ShaderNodeAddShader", name=GLINTS_ADDED)
     h.link(tree, base.outputs["BSDF"], add.inputs[0])
     h.link(tree, glint.outputs["Emission"], add.inputs[1])
     h.link(tree, add.outputs[0], output.inputs["Surface"])
+    h.arrange(tree, set_widths=False)
     return glint
 
 
@@ -126,33 +160,29 @@ def _footprint_state(material):
     values = {socket.name: socket.default_value for socket in node.inputs
               if not socket.is_linked and socket.name != "Frame" and hasattr(socket, "default_value")}
     values = {name: tuple(v) if hasattr(v, "__len__") else v for name, v in values.items()}
-    return texture.image, _texture_object(material), values
+    space = own.node(material.node_tree, PRINT_SPACE)
+    return texture.image, space.object if space is not None else None, values
 
 
-def _texture_object(material):
-    for node in material.node_tree.nodes:
-        if node.bl_idname == "ShaderNodeTexCoord" and node.label == "Print Space":
-            return node.object
-    return None
-
-
-def attach_footprints(material, image, terrain, values):
+def attach_footprints(material, image, space_object, values):
     """Wire the footprint image into our material's displacement, or update the wiring.
 
-    image: the print map; it carries its region in the terrain's object space (custom
-    properties "region_min" and "region_size"), so the texture lines up with the terrain
-    and with the patch object that shares the material. values: group input defaults.
-    The Frame input gets a driver with the simple expression `frame`.
+    image: the print map; it carries its region in space_object's X and Y (custom properties
+    "region_min" and "region_size"). space_object is the print frame: world-aligned, in world
+    units, and a child of the terrain, so the prints stay on the terrain and on the patch that
+    shares the material. values: group input defaults. The Frame input gets a driver with the
+    simple expression `frame`.
     """
     tree = material.node_tree
     node = footprint_node(material)
     if node is None:
         output = next(n for n in tree.nodes if n.bl_idname == "ShaderNodeOutputMaterial")
-        coords = h.add_node(tree, "ShaderNodeTexCoord", (-700, -700), "Print Space")
-        mapping = h.add_node(tree, "ShaderNodeMapping", (-500, -700), "Print Region", vector_type="POINT")
-        texture = h.add_node(tree, "ShaderNodeTexImage", (-300, -700), "Print Map",
+        coords = h.add_node(tree, "ShaderNodeTexCoord", name=PRINT_SPACE, label="Print Space")
+        mapping = h.add_node(tree, "ShaderNodeMapping", name=PRINT_REGION, label="Print Region",
+                             vector_type="POINT")
+        texture = h.add_node(tree, "ShaderNodeTexImage", name=PRINT_MAP, label="Print Map",
                              interpolation="Linear", extension="CLIP")
-        node = h.add_node(tree, "ShaderNodeGroup", (50, -700), "Footprints",
+        node = h.add_node(tree, "ShaderNodeGroup", name="Sandscape Footprints", label="Footprints",
                           node_tree=h.ensure_group(footprint_height))
         h.link(tree, coords.outputs["Object"], mapping.inputs["Vector"])
         h.link(tree, mapping.outputs["Vector"], texture.inputs["Vector"])
@@ -162,10 +192,11 @@ def attach_footprints(material, image, terrain, values):
         driver = node.inputs["Frame"].driver_add("default_value").driver
         driver.type = "SCRIPTED"
         driver.expression = "frame"  # a simple expression: evaluated without Python auto-run
+        h.arrange(tree, set_widths=False)
     texture = node.inputs["Print Map"].links[0].from_node
     mapping = texture.inputs["Vector"].links[0].from_node
     coords = mapping.inputs["Vector"].links[0].from_node
-    coords.object = terrain
+    coords.object = space_object
     texture.image = image
     low, size = image["region_min"], image["region_size"]
     mapping.inputs["Location"].default_value = (-low[0] / size[0], -low[1] / size[1], 0.0)
@@ -175,3 +206,25 @@ def attach_footprints(material, image, terrain, values):
             node.inputs[name].default_value = value
     material.displacement_method = "DISPLACEMENT"
     return node
+
+
+def ensure_noise_image(resolution, seed):
+    """The seeded white-noise image for this resolution and seed (8-bit, Non-Color, packed).
+
+    One image per (resolution, seed): two materials with other seeds never share, and so never
+    rewrite, each other's image.
+    """
+    image = own.image(own.GLINT_NOISE, seed=seed, resolution=resolution)
+    if image is not None and image.packed_file:
+        return image
+    if image is None:
+        image = bpy.data.images.new("Sandscape Glint Noise", resolution, resolution, alpha=False)
+        own.mark(image, own.IMAGE_KEY, own.GLINT_NOISE, seed=seed, resolution=resolution)
+        # Before the pixels: changing the colour space of a generated image regenerates it.
+        image.colorspace_settings.name = "Non-Color"
+    values = glint_twin.byte_to_unit(glint_twin.noise_image(resolution, seed))
+    rgba = np.repeat(values[..., None], 4, axis=-1)
+    rgba[..., 3] = 1.0
+    image.pixels.foreach_set(rgba.ravel())
+    image.pack()
+    return image

@@ -42,6 +42,24 @@ def ensure_group(builder):
     return new
 
 
+GROUP_NODE_TYPES = {"ShaderNodeTree": "ShaderNodeGroup", "CompositorNodeTree": "CompositorNodeGroup",
+                    "GeometryNodeTree": "GeometryNodeGroup"}
+
+
+def insert_group_node(tree, builder, location=(0.0, 0.0)):
+    """A node of our group (ensured first) in someone's tree, selected and active."""
+    node = tree.nodes.new(GROUP_NODE_TYPES[tree.bl_idname])
+    node.node_tree = ensure_group(builder)
+    node.label = builder.NAME.removeprefix("Sandscape ")
+    node.width = GROUP_NODE_WIDTH
+    node.location = location
+    for other in tree.nodes:
+        other.select = False
+    node.select = True
+    tree.nodes.active = node
+    return node
+
+
 def add_input(tree, name, socket_type, description, default=None, min_value=None, max_value=None,
               subtype=None):
     return _add_socket(tree, "INPUT", name, socket_type, description, default, min_value, max_value,
@@ -142,12 +160,16 @@ def node_size(node):
     return float(node.width), HEADER + SOCKET_ROW * rows + options
 
 
-def arrange(tree):
+def arrange(tree, set_widths=True):
     """Place every node: a column per dependency depth (sources left, Group Output right), a
     band per frame (stacked top to bottom in the order the data flows), nodes stacked in their
-    cell. Returns {node name: (x, y, width, height)}, y being the top edge."""
+    cell. Returns {node name: (x, y, width, height)}, y being the top edge.
+
+    set_widths: give every node our width (groups); False keeps Blender's (materials, whose
+    Principled BSDF needs its own).
+    """
     nodes = [n for n in tree.nodes if n.bl_idname != "NodeFrame"]
-    for node in nodes:
+    for node in nodes if set_widths else ():
         wide = node.bl_idname.endswith("NodeGroup")
         node.width = max(GROUP_NODE_WIDTH if wide else NODE_WIDTH, node.bl_width_min)
     before = {n.name: set() for n in nodes}

@@ -1,78 +1,28 @@
-"""Operators for the desert demo."""
+"""The desert demo operator."""
 
 import bpy
-from bpy.props import BoolProperty, EnumProperty
 
-from ..blender import demo, optimize, presets
+from ..blender import demo
+from .base import SandscapeOperator
 
 
-class SANDSCAPE_OT_build_demo_scene(bpy.types.Operator):
-    """Build the Sandscape desert demo in this (empty) file: dunes, glints, footprints, dust, god rays"""
+def _no_meshes(context):
+    return not any(obj.type == "MESH" for obj in context.scene.objects)
+
+
+class SANDSCAPE_OT_build_demo_scene(SandscapeOperator, bpy.types.Operator):
+    """Build the Sandscape desert demo in this (empty) scene: dunes, glints, footprints, dust, god rays"""
 
     bl_idname = "sandscape.build_demo_scene"
     bl_label = "Build Demo Scene"
-    bl_options = {"REGISTER", "UNDO"}
+    POLL = ((_no_meshes, "The demo builds into an empty scene: this one has meshes (File > New, or a new "
+                         "scene)"),)
 
     def execute(self, context):
-        if any(obj.type == "MESH" for obj in context.scene.objects):
-            self.report({"ERROR"}, "The demo builds into an empty scene: this one has meshes (File > New)")
-            return {"CANCELLED"}
         built = demo.build(context)
         self.report({"INFO"}, f"Built the demo: '{built['terrain'].name}', walker '{built['walker'].name}', "
                     f"camera '{built['camera'].name}'")
         return {"FINISHED"}
 
 
-class SANDSCAPE_OT_optimize_scene(bpy.types.Operator):
-    """Switch off what does not reach the image: empty volumes, idle adaptive subdivision, dark glints,
-    god rays with the sun out of view, idle volume bounces, passes nothing reads"""
-
-    bl_idname = "sandscape.optimize_scene"
-    bl_label = "Optimize Scene"
-    bl_options = {"REGISTER", "UNDO"}
-
-    dry_run: BoolProperty(name="Dry Run", default=False,
-                          description="Only list what would be switched off; change nothing")
-
-    def execute(self, context):
-        found = optimize.decisions(context.scene)
-        if self.dry_run:
-            for decision in found:
-                self.report({"INFO"}, "would: " + decision.message)
-        else:
-            # One decision can free another (a rebuilt compositor reads fewer passes): repeat.
-            batch, found = found, []
-            for _ in range(3):
-                for decision in batch:
-                    decision.apply()
-                    self.report({"INFO"}, decision.message)
-                found += batch
-                batch = optimize.decisions(context.scene)
-                if not batch:
-                    break
-        verb = "Would switch off" if self.dry_run else "Switched off"
-        self.report({"INFO"}, f"{verb} {len(found)} thing(s)" if found else "Nothing to switch off")
-        return {"FINISHED"}
-
-
-class SANDSCAPE_OT_apply_quality_preset(bpy.types.Operator):
-    """Set samples, denoising, volume sampling, dicing and bounces from a measured quality preset"""
-
-    bl_idname = "sandscape.apply_quality_preset"
-    bl_label = "Apply Quality Preset"
-    bl_options = {"REGISTER", "UNDO"}
-
-    preset: EnumProperty(
-        name="Preset", default="PREVIEW",
-        items=(("DRAFT", "Draft", "32 samples: a quick look at composition and light"),
-               ("PREVIEW", "Preview", "64 samples: clean enough to judge glints and prints (the demo still)"),
-               ("FINAL", "Final", "384 samples: the error of Blender's defaults in less time")))
-
-    def execute(self, context):
-        settings = presets.PRESETS[self.preset]
-        presets.apply(context.scene, settings)
-        self.report({"INFO"}, f"{self.preset.title()}: " + ", ".join(f"{k} {v}" for k, v in settings.items()))
-        return {"FINISHED"}
-
-
-classes = (SANDSCAPE_OT_build_demo_scene, SANDSCAPE_OT_optimize_scene, SANDSCAPE_OT_apply_quality_preset)
+classes = (SANDSCAPE_OT_build_demo_scene,)

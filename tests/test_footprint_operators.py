@@ -3,13 +3,12 @@
 import math
 import pathlib
 import tempfile
-import types
 
 import bpy
 import numpy as np
 import pytest
 
-from devtools import readback, scenes
+from devtools import operators, readback, scenes
 
 
 def ours(kind):
@@ -127,20 +126,39 @@ def bad_scene(case, settings):
         settings.walker = scenes.keyframed_walker(lambda f: (50.0 + f, 0.0, 0.0), range(1, 32), "Away")
 
 
+# Structure a button needs: refused by poll(), whose message bpy.ops puts in its error.
+NOT_RUNNABLE = [
+    ("no walker", "No walker"),
+    ("no terrain", "No terrain"),
+    ("terrain not a mesh", "No terrain"),
+]
+# Values and data that cannot make prints: refused by execute() with an ERROR report.
 BAD_INPUT = [
-    ("no walker", {}, "No walker"),
     ("not animated", {}, "not animated"),
     ("stands still", {}, "does not move"),
-    ("no terrain", {}, "No terrain"),
-    ("terrain not a mesh", {}, "not a mesh"),
     ("off the terrain", {}, "No print lands"),
     ("ok", {"stride": 0.0}, "Stride"),
     ("ok", {"stride": -1.0}, "Stride"),
     ("ok", {"stride": math.nan}, "Stride"),
+    ("ok", {"stance": math.inf}, "Stance"),
+    ("ok", {"depth": -math.inf}, "Depth"),
     ("ok", {"use_scene_range": False, "frame_start": 10, "frame_end": 5}, "empty"),
     ("ok", {"resolution": 0}, "Resolution"),
     ("ok", {"foot_width": 1.0}, "Foot width"),
+    ("ok", {"variation": math.nan}, "Variation"),
+    ("ok", {"dicing_pixel_size": 0.0}, "Dicing"),
 ]
+
+
+@pytest.mark.parametrize("case,message", NOT_RUNNABLE)
+@pytest.mark.parametrize("operator", ["emit_footprints", "paint_footprints"])
+def test_what_cannot_run_is_greyed_out_with_a_reason(walk, operator, case, message):
+    bad_scene(case, walk)
+    before = readback.data_snapshot()
+    assert not getattr(bpy.ops.sandscape, operator).poll()
+    with pytest.raises(RuntimeError, match=message):
+        getattr(bpy.ops.sandscape, operator)()
+    assert readback.data_snapshot() == before
 
 
 @pytest.mark.parametrize("case,values,message", BAD_INPUT)
@@ -156,12 +174,8 @@ def test_bad_input_is_refused_and_changes_nothing(walk, operator, case, values, 
     assert readback.data_snapshot() == before
     assert bpy.context.scene.frame_current == frame
     # The operator itself returns CANCELLED (bpy.ops turns the ERROR report into the exception).
-    cls = getattr(bpy.types, f"SANDSCAPE_OT_{operator}")
-    reports = []
-    fake = types.SimpleNamespace(report=lambda kind, text: reports.append((kind, text)))
-    fake.run = types.MethodType(cls.run, fake)
-    assert cls.execute(fake, bpy.context) == {"CANCELLED"}
-    assert reports[0][0] == {"ERROR"} and message in reports[0][1]
+    result, reports = operators.run_execute(f"sandscape.{operator}")
+    assert result == {"CANCELLED"} and reports[0][0] == {"ERROR"} and message in reports[0][1]
     assert readback.data_snapshot() == before
 
 

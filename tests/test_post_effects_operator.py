@@ -99,7 +99,7 @@ def test_a_users_compositor_is_kept_and_restored(desert):
 
 
 @pytest.mark.parametrize("case, message", [("no camera", "no camera"), ("decay", "Decay must lie"),
-                                           ("samples", "sample"), ("no sun", "No sun")])
+                                           ("samples", "Samples"), ("no sun", "No sun")])
 def test_bad_input_is_refused_and_changes_nothing(desert, case, message):
     settings = desert.sandscape_post
     if case == "no camera":

@@ -1,12 +1,11 @@
 """bpy.ops.sandscape.add_sand_material: idempotent updates, users' data left alone, bad input refused."""
 
 import math
-import types
 
 import bpy
 import pytest
 
-from devtools import readback
+from devtools import operators, readback
 
 
 def ours(datablocks, key):
@@ -76,42 +75,43 @@ def scene_for(case):
     return obj
 
 
+@pytest.mark.parametrize("case", ["no object", "not a mesh"])
+def test_without_a_mesh_the_button_is_greyed_out_with_a_reason(case):
+    scene_for(case)
+    before = readback.data_snapshot()
+    assert not bpy.ops.sandscape.add_sand_material.poll()
+    with pytest.raises(RuntimeError, match="Select a mesh"):
+        bpy.ops.sandscape.add_sand_material()
+    assert readback.data_snapshot() == before
+
+
 BAD_INPUT = [
-    ("no object", {}, "No active object"),
-    ("not a mesh", {}, "not a mesh"),
-    ("plane", {"glint_size": 0.0}, "Glint size"),
-    ("plane", {"glint_size": -1.0}, "Glint size"),
-    ("plane", {"glint_size": math.nan}, "Glint size"),
+    ("plane", {"glint_size": 0.0}, "Glint Size"),
+    ("plane", {"glint_size": -1.0}, "Glint Size"),
+    ("plane", {"glint_size": math.nan}, "Glint Size"),
+    ("plane", {"glint_size": math.inf}, "Glint Size"),
     ("plane", {"threshold": -0.1}, "Threshold"),
     ("plane", {"threshold": 1.5}, "Threshold"),
     ("plane", {"threshold": math.nan}, "Threshold"),
     ("plane", {"strength": -1.0}, "Strength"),
-    ("plane", {"facing_power": -2.0}, "Facing power"),
+    ("plane", {"strength": math.inf}, "Strength"),
+    ("plane", {"facing_power": -2.0}, "Facing Power"),
+    ("plane", {"color": (1.0, math.nan, 1.0, 1.0)}, "Color"),
     ("plane", {"source": "IMAGE", "image": "no such image"}, "No image named"),
     ("no uv map", {"source": "IMAGE"}, "no UV map"),
 ]
 
 
 @pytest.mark.parametrize("case,props,message", BAD_INPUT)
-def test_bad_input_is_refused_and_changes_nothing(sandscape, case, props, message):
+def test_bad_input_is_refused_and_changes_nothing(case, props, message):
     obj = scene_for(case)
     # A user's material already on the object must survive the refusal as well.
-    if obj is not None and obj.type == "MESH":
-        obj.data.materials.append(bpy.data.materials.new("Their Material"))
+    obj.data.materials.append(bpy.data.materials.new("Their Material"))
     before = readback.data_snapshot()
     with pytest.raises(RuntimeError, match=message):
         bpy.ops.sandscape.add_sand_material(**props)
     assert readback.data_snapshot() == before
-
     # The operator itself returns CANCELLED (bpy.ops turns the ERROR report into the exception).
-    cls = bpy.types.SANDSCAPE_OT_add_sand_material
-    reports = []
-    rna = bpy.ops.sandscape.add_sand_material.get_rna_type().properties
-    defaults = {p.identifier: tuple(p.default_array) if getattr(p, "is_array", False) else p.default
-                for p in rna if p.identifier != "rna_type"}
-    fake = types.SimpleNamespace(**{**defaults, **props},
-                                 report=lambda kind, text: reports.append((kind, text)))
-    fake._problem = types.MethodType(cls._problem, fake)
-    assert cls.execute(fake, bpy.context) == {"CANCELLED"}
-    assert reports and reports[0][0] == {"ERROR"} and message in reports[0][1]
+    result, reports = operators.run_execute("sandscape.add_sand_material", **props)
+    assert result == {"CANCELLED"} and reports[0][0] == {"ERROR"} and message in reports[0][1]
     assert readback.data_snapshot() == before

@@ -1,8 +1,9 @@
-"""The Sandscape tab in the 3D viewport sidebar."""
+"""The Sandscape tab in the 3D viewport sidebar: a Sandscape panel with sub-panels for Sand,
+Footprints, Atmosphere and Render. Buttons are live only when their operator's poll() allows."""
 
 import bpy
 
-from ..blender import sand as sand_material
+from ..blender import sand
 
 
 class SandscapeTab:
@@ -13,17 +14,30 @@ class SandscapeTab:
     bl_category = "Sandscape"
 
 
-class SANDSCAPE_PT_sand(SandscapeTab, bpy.types.Panel):
+class SandscapeSubPanel(SandscapeTab):
+    bl_parent_id = "SANDSCAPE_PT_main"
+
+
+class SANDSCAPE_PT_main(SandscapeTab, bpy.types.Panel):
+    bl_label = "Sandscape"
+    bl_idname = "SANDSCAPE_PT_main"
+
+    def draw(self, context):
+        layout = self.layout
+        layout.operator("sandscape.build_demo_scene", icon="WORLD")
+
+
+class SANDSCAPE_PT_sand(SandscapeSubPanel, bpy.types.Panel):
     bl_label = "Sand"
     bl_idname = "SANDSCAPE_PT_sand"
 
     def draw(self, context):
         layout = self.layout
         obj = context.active_object
-        material = sand_material.find_sand_material(obj) if obj is not None else None
+        material = sand.find_sand_material(obj) if obj is not None else None
         text = "Update Sand Material" if material else "Add Sand Material"
         layout.operator("sandscape.add_sand_material", text=text, icon="MATERIAL")
-        node = sand_material.glint_node(material)
+        node = sand.glint_node(material)
         if node is None:
             if obj is not None and obj.type == "MESH":
                 layout.label(text="No Sandscape material on this object")
@@ -33,7 +47,7 @@ class SANDSCAPE_PT_sand(SandscapeTab, bpy.types.Panel):
         for socket in node.inputs:
             if not socket.is_linked and hasattr(socket, "default_value"):
                 column.prop(socket, "default_value", text=socket.name)
-        image = sand_material.image_node(material)
+        image = sand.image_node(material)
         if image is not None:
             layout.template_ID(image, "image", open="image.open")
 
@@ -46,7 +60,7 @@ FOOTPRINT_SECTIONS = (
 )
 
 
-class SANDSCAPE_PT_footprints(SandscapeTab, bpy.types.Panel):
+class SANDSCAPE_PT_footprints(SandscapeSubPanel, bpy.types.Panel):
     bl_label = "Footprints"
     bl_idname = "SANDSCAPE_PT_footprints"
 
@@ -81,7 +95,7 @@ POST_SECTIONS = (
 )
 
 
-class SANDSCAPE_PT_atmosphere(SandscapeTab, bpy.types.Panel):
+class SANDSCAPE_PT_atmosphere(SandscapeSubPanel, bpy.types.Panel):
     bl_label = "Atmosphere"
     bl_idname = "SANDSCAPE_PT_atmosphere"
 
@@ -96,6 +110,22 @@ class SANDSCAPE_PT_atmosphere(SandscapeTab, bpy.types.Panel):
         layout.operator("sandscape.add_post_effects", icon="NODE_COMPOSITING")
 
 
+class SANDSCAPE_PT_render(SandscapeSubPanel, bpy.types.Panel):
+    bl_label = "Render"
+    bl_idname = "SANDSCAPE_PT_render"
+
+    def draw(self, context):
+        layout = self.layout
+        layout.label(text="Quality (measured presets)")
+        row = layout.row(align=True)
+        for preset, text in (("DRAFT", "Draft"), ("PREVIEW", "Preview"), ("FINAL", "Final")):
+            row.operator("sandscape.apply_quality_preset", text=text).preset = preset
+        layout.label(text="Switch off what cannot reach the image")
+        row = layout.row(align=True)
+        row.operator("sandscape.optimize_scene", text="List", icon="VIEWZOOM").dry_run = True
+        row.operator("sandscape.optimize_scene", text="Optimize", icon="MODIFIER").dry_run = False
+
+
 def _sections(layout, settings, sections):
     for heading, names in sections:
         layout.label(text=heading)
@@ -104,4 +134,5 @@ def _sections(layout, settings, sections):
             column.prop(settings, name)
 
 
-classes = (SANDSCAPE_PT_sand, SANDSCAPE_PT_footprints, SANDSCAPE_PT_atmosphere)
+classes = (SANDSCAPE_PT_main, SANDSCAPE_PT_sand, SANDSCAPE_PT_footprints, SANDSCAPE_PT_atmosphere,
+           SANDSCAPE_PT_render)

@@ -1,8 +1,14 @@
-"""Scene settings: what the sidebar's Footprints section edits and the operators read.
+"""Scene settings: what the sidebar edits and the operators read (scene.sandscape_footprints,
+scene.sandscape_atmosphere, scene.sandscape_post).
 
 Scripts set them too: scene.sandscape_footprints.stride = 0.6, then
-bpy.ops.sandscape.paint_footprints(). Limits are soft: out-of-range values set from a
-script reach the operator, which reports them instead of silently clamping.
+bpy.ops.sandscape.paint_footprints(). Limits in the UI are soft: a value out of range, NaN or
+inf set from a script reaches the operator, which refuses it by the class's LIMITS before
+changing anything.
+
+Lengths are physical: they are stored in metres and read in scene units, so a centimetre scene
+(unit scale 0.01) starts from a 0.7 m stride (70 units) like a metre scene does, and the
+sidebar shows "70 cm" in both.
 """
 
 import math
@@ -17,11 +23,35 @@ from bpy.props import (
     PointerProperty,
 )
 
+from ..blender import units
 from ..node_groups import footprint_height
 
 DEPTH = footprint_height.INPUTS["Depth"]
 RIM = footprint_height.INPUTS["Rim"]
 NOISE = footprint_height.INPUTS["Noise Amount"]
+INT_MAX = 2**31 - 1
+
+
+def length(key, name, metres, description, soft_max, soft_min=0.0, per_second=False):
+    """A length (or a speed) shown in the scene's units, stored in metres under `key`.
+
+    Reading gives scene units; writing takes scene units. Unset, it is `metres`.
+    """
+    def get(self):
+        stored = self.get(key, metres)
+        if per_second:
+            return tuple(v / units.metres_per_unit(self.id_data) for v in stored)
+        return stored / units.metres_per_unit(self.id_data)
+
+    def set(self, value):
+        scale = units.metres_per_unit(self.id_data)
+        self[key] = tuple(v * scale for v in value) if per_second else value * scale
+
+    if per_second:
+        return FloatVectorProperty(name=name, size=3, default=metres, subtype="VELOCITY", unit="VELOCITY",
+                                   description=description, get=get, set=set)
+    return FloatProperty(name=name, default=metres, soft_min=soft_min, soft_max=soft_max, subtype="DISTANCE",
+                         unit="LENGTH", precision=3, description=description, get=get, set=set)
 
 
 def _is_mesh(_self, obj):
@@ -29,6 +59,15 @@ def _is_mesh(_self, obj):
 
 
 class SandscapeFootprintSettings(bpy.types.PropertyGroup):
+    # Valid values, in what the artist reads: metres for lengths, else the property's own unit.
+    LIMITS = {
+        "frame_start": (-1_000_000, 1_000_000), "frame_end": (-1_000_000, 1_000_000),
+        "stride": (1e-4, 1e3), "stance": (0.0, 1e3), "foot_length": (1e-4, 1e2), "foot_width": (1e-4, 1e2),
+        "depth": (0.0, 1e2), "rim": (0.0, 1e2), "rim_width": (0.0, 1e2), "variation": (0.0, 0.99),
+        "noise_amount": (0.0, 1.0), "seed": (0, INT_MAX), "resolution": (1, 16384),
+        "dicing_pixel_size": (0.1, 1e4),
+    }
+
     source: EnumProperty(
         name="Source", default="WALKER",
         items=(("WALKER", "Walker", "Steps along the path of an animated object"),
@@ -38,25 +77,19 @@ class SandscapeFootprintSettings(bpy.types.PropertyGroup):
     particle_object: PointerProperty(name="Particle Emitter", type=bpy.types.Object,
                                      description="Object whose first particle system marks the prints")
     terrain: PointerProperty(name="Terrain", type=bpy.types.Object, poll=_is_mesh,
-                             description="Mesh the prints are projected onto and painted into")
+                             description="Mesh the prints are projected onto (straight down, world -Z) "
+                             "and painted into")
     use_scene_range: BoolProperty(name="Scene Frame Range", default=True,
                                   description="Walk over the scene's frame range")
     frame_start: IntProperty(name="Start", default=1, description="First frame of the walk")
     frame_end: IntProperty(name="End", default=250, description="Last frame of the walk")
-    stride: FloatProperty(name="Stride", default=0.7, soft_min=0.05, soft_max=3.0, subtype="DISTANCE",
-                          unit="LENGTH", description="Distance along the path from one print to the next")
-    stance: FloatProperty(name="Stance", default=0.2, soft_min=0.0, soft_max=1.0, subtype="DISTANCE",
-                          unit="LENGTH", description="Distance between the left and right feet")
-    foot_length: FloatProperty(name="Foot Length", default=0.27, soft_min=0.02, soft_max=2.0,
-                               subtype="DISTANCE", unit="LENGTH", description="Heel to toe")
-    foot_width: FloatProperty(name="Foot Width", default=0.10, soft_min=0.01, soft_max=1.0,
-                              subtype="DISTANCE", unit="LENGTH", description="Across the ball of the foot")
-    depth: FloatProperty(name="Depth", default=DEPTH[2], soft_min=0.0, soft_max=0.5, subtype="DISTANCE",
-                         unit="LENGTH", description=DEPTH[1])
-    rim: FloatProperty(name="Rim", default=RIM[2], soft_min=0.0, soft_max=0.2, subtype="DISTANCE",
-                       unit="LENGTH", description=RIM[1])
-    rim_width: FloatProperty(name="Rim Width", default=0.04, soft_min=0.0, soft_max=0.5, subtype="DISTANCE",
-                             unit="LENGTH", description="Width of the ring of pushed-up sand")
+    stride: length("stride_m", "Stride", 0.7, "Distance along the path from one print to the next", 3.0)
+    stance: length("stance_m", "Stance", 0.2, "Distance between the left and right feet", 1.0)
+    foot_length: length("foot_length_m", "Foot Length", 0.27, "Heel to toe", 2.0)
+    foot_width: length("foot_width_m", "Foot Width", 0.10, "Across the ball of the foot", 1.0)
+    depth: length("depth_m", "Depth", DEPTH[2], DEPTH[1], 0.5)
+    rim: length("rim_m", "Rim", RIM[2], RIM[1], 0.2)
+    rim_width: length("rim_width_m", "Rim Width", 0.04, "Width of the ring of pushed-up sand", 0.5)
     variation: FloatProperty(name="Variation", default=0.1, soft_min=0.0, soft_max=0.9, subtype="FACTOR",
                              description="Random spread of each print's depth scale: 0.1 is +-10 %")
     noise_amount: FloatProperty(name="Noise", default=NOISE[2], soft_min=0.0, soft_max=1.0,
@@ -69,41 +102,50 @@ class SandscapeFootprintSettings(bpy.types.PropertyGroup):
 
 
 class SandscapeAtmosphereSettings(bpy.types.PropertyGroup):
+    LIMITS = {
+        "sun_elevation": (-math.pi / 2, math.pi / 2), "sun_azimuth": (-20 * math.pi, 20 * math.pi),
+        "density": (0.0, 1e6), "wavelengths": (100.0, 10_000.0), "dust_density": (0.0, 1e6),
+        "anisotropy": (-0.99, 0.99), "wind": (-1e4, 1e4), "dust_scale": (1e-4, 1e5), "coverage": (0.0, 1.0),
+        "softness": (1e-4, 1.0), "falloff": (1e-4, 1e5), "margin": (0.0, 1e6),
+    }
+
     sun_elevation: FloatProperty(name="Sun Elevation", default=math.radians(25.0), subtype="ANGLE",
                                  soft_min=math.radians(-10.0), soft_max=math.radians(90.0),
                                  description="Height of the sun above the horizon")
     sun_azimuth: FloatProperty(name="Sun Azimuth", default=math.radians(135.0), subtype="ANGLE",
                                description="Compass direction of the sun: 0 along +Y, 90 degrees along +X")
     density: FloatProperty(name="Density", default=0.02, soft_min=0.0, soft_max=1.0, precision=4,
-                           description="Scattering coefficient at 550 nm, 1/m; 0 adds no volume at all. "
-                           "The volume is a box around the scene: a world volume would block the sun lamp")
+                           description="Scattering coefficient at 550 nm, per metre; 0 adds no volume at "
+                           "all. The volume is a box around the scene: a world volume would block the sun "
+                           "lamp")
     wavelengths: FloatVectorProperty(name="Wavelengths", size=3, default=(680.0, 550.0, 440.0),
                                      soft_min=380.0, soft_max=780.0,
                                      description="Red, green, blue wavelengths in nm for the 1/lambda^4 law")
     dust_density: FloatProperty(name="Dust", default=0.0, soft_min=0.0, soft_max=1.0, precision=4,
-                                description="Extra grey, forward-scattering dust (Henyey-Greenstein), 1/m; "
-                                "0 leaves it out")
+                                description="Extra grey, forward-scattering dust (Henyey-Greenstein), per "
+                                "metre; 0 leaves it out")
     anisotropy: FloatProperty(name="Anisotropy", default=0.6, soft_min=-0.9, soft_max=0.95,
                               description="Henyey-Greenstein g of the dust: above 0 scatters forwards")
     use_wind: BoolProperty(name="Wind-Lifted Dust", default=True,
                            description="Patches of dust carried by the wind and thinning with height; off "
                            "gives a homogeneous volume, far cheaper to render")
-    wind: FloatVectorProperty(name="Wind", size=3, default=(3.0, 1.0, 0.0), subtype="VELOCITY",
-                              description="Wind velocity in metres per second")
-    dust_scale: FloatProperty(name="Patch Size", default=8.0, soft_min=0.1, soft_max=100.0,
-                              subtype="DISTANCE", unit="LENGTH", description="Size of the dust patches")
+    wind: length("wind_m", "Wind", (3.0, 1.0, 0.0), "Wind velocity", 0.0, per_second=True)
+    dust_scale: length("dust_scale_m", "Patch Size", 8.0, "Size of the dust patches", 100.0)
     coverage: FloatProperty(name="Coverage", default=0.5, soft_min=0.0, soft_max=1.0, subtype="FACTOR",
                             description="Share of the ground under dust")
     softness: FloatProperty(name="Softness", default=0.08, soft_min=0.001, soft_max=0.5,
                             description="Width of the patch edges")
-    falloff: FloatProperty(name="Height Falloff", default=1.5, soft_min=0.05, soft_max=50.0,
-                           subtype="DISTANCE", unit="LENGTH",
-                           description="Height over which dust thins by 1/e")
-    margin: FloatProperty(name="Margin", default=2.0, soft_min=0.0, soft_max=100.0, subtype="DISTANCE",
-                          unit="LENGTH", description="How far the dust box reaches beyond the scene")
+    falloff: length("falloff_m", "Height Falloff", 1.5, "Height over which dust thins by 1/e", 50.0)
+    margin: length("margin_m", "Margin", 2.0, "How far the dust box reaches beyond the scene", 100.0)
 
 
 class SandscapePostSettings(bpy.types.PropertyGroup):
+    LIMITS = {
+        "blur_threshold": (0.0, 1e6), "samples": (1, 1024), "ray_density": (0.0, 1.0),
+        "ray_weight": (0.0, 100.0), "ray_decay": (0.0, 1.0), "ray_exposure": (0.0, 1e4),
+        "disc_radius": (1e-4, 10.0), "fade": (0.0, 10.0),
+    }
+
     use_blur: BoolProperty(name="Gated Blur", default=True,
                            description="Blur the scattered light where it changes the luminance (seed 000)")
     blur_threshold: FloatProperty(name="Threshold", default=0.01, soft_min=0.0, soft_max=1.0, precision=4,

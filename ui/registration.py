@@ -1,20 +1,24 @@
 """Registers every Sandscape class; the root __init__ only calls register()/unregister().
 
-A module may also define register()/unregister() for what is not a class (properties
-attached to Blender types); they run after its classes are registered, and before they go.
+A module may also define register()/unregister() for what is not a class (properties attached
+to Blender types, menu entries, handlers); they run after its classes are registered, and
+before they go.
 """
 
 import bpy
 
-from ..operators import atmosphere, demo, footprints, sand_material
-from . import panels, properties
+from ..blender import post
+from ..operators import atmosphere, demo, footprints, nodes, render, sand, walker
+from ..operators import post as post_operators
+from . import menus, panels, properties
 
-MODULES = (properties, sand_material, footprints, atmosphere, demo, panels)
+MODULES = (properties, sand, walker, footprints, atmosphere, post_operators, demo, render, nodes, panels,
+           menus, post)
 
 
 def register():
     for module in MODULES:
-        for cls in module.classes:
+        for cls in getattr(module, "classes", ()):
             bpy.utils.register_class(cls)
         if hasattr(module, "register"):
             module.register()
@@ -24,5 +28,5 @@ def unregister():
     for module in reversed(MODULES):
         if hasattr(module, "unregister"):
             module.unregister()
-        for cls in reversed(module.classes):
+        for cls in reversed(getattr(module, "classes", ())):
             bpy.utils.unregister_class(cls)

@@ -1,23 +1,26 @@
-"""Operators for the glinting sand material."""
+"""The sand material operator: Add (or Update) Sand Material on the active mesh."""
 
 import bpy
 from bpy.props import EnumProperty, FloatProperty, FloatVectorProperty, IntProperty, StringProperty
 
-from ..blender import images
-from ..blender import sand as sand_material
+from ..blender import sand, units
 from ..node_groups import glints
+from .base import SandscapeOperator, active_mesh, editable_problem, value_problem
 
 # The operator mirrors the group's inputs: name, tooltip and default come from its socket table.
 MIRROR = {name: {"name": name, "description": spec[1], "default": spec[2]}
           for name, spec in glints.INPUTS.items()}
+GLINT_SIZE_METRES = glints.INPUTS["Glint Size"][2]
 
 
-class SANDSCAPE_OT_add_sand_material(bpy.types.Operator):
+class SANDSCAPE_OT_add_sand_material(SandscapeOperator, bpy.types.Operator):
     """Put a Sandscape sand material with glints on the active mesh, or update the one it has"""
 
     bl_idname = "sandscape.add_sand_material"
     bl_label = "Add Sand Material"
-    bl_options = {"REGISTER", "UNDO"}
+    POLL = ((active_mesh, "Select a mesh: the sand material goes on the active object"),)
+    LIMITS = {"threshold": (0.0, 1.0), "glint_size": (1e-7, 1e7), "facing_power": (0.0, 1e7),
+              "color": (0.0, 1e4), "strength": (0.0, 1e7), "seed": (0, 2**24), "image_resolution": (1, 16384)}
 
     # Soft limits only: out-of-range values from scripts are reported, not silently clamped.
     source: EnumProperty(
@@ -39,19 +42,22 @@ class SANDSCAPE_OT_add_sand_material(bpy.types.Operator):
         name="Noise Resolution", description="Size of the generated noise image in texels",
         default=1024, min=1, max=16384)
 
-    def _problem(self, obj):
-        if obj is None:
-            return "No active object: select a mesh to put the sand material on"
-        if obj.type != "MESH":
-            return f"'{obj.name}' is a {obj.type.lower()}, not a mesh"
-        if not 0.0 <= self.threshold <= 1.0:
-            return f"Threshold must lie in [0, 1], got {self.threshold:g}"
-        if not self.glint_size > 0.0:
-            return f"Glint size must be greater than 0, got {self.glint_size:g}"
-        if not self.facing_power >= 0.0:
-            return f"Facing power must be 0 or more, got {self.facing_power:g}"
-        if not self.strength >= 0.0:
-            return f"Strength must be 0 or more, got {self.strength:g}"
+    def invoke(self, context, _event):
+        """Start from the material the object has (the sidebar's Update button), else from the
+        defaults in the scene's units; values a script passed are kept."""
+        current = sand.read_settings(sand.find_sand_material(context.active_object))
+        if not current and not self.properties.is_property_set("glint_size"):
+            self.glint_size = units.to_units(context.scene, GLINT_SIZE_METRES)
+        for name, value in current.items():
+            if not self.properties.is_property_set(name):
+                setattr(self, name, value)
+        return self.execute(context)
+
+    def problem(self, context):
+        obj = context.active_object
+        problem = value_problem(self.properties, self.LIMITS, context.scene) or editable_problem(obj)
+        if problem:
+            return problem
         if self.source == "IMAGE" and self.image and self.image not in bpy.data.images:
             return f"No image named '{self.image}'"
         if self.source == "IMAGE" and not obj.data.uv_layers:
@@ -59,25 +65,19 @@ class SANDSCAPE_OT_add_sand_material(bpy.types.Operator):
         return None
 
     def execute(self, context):
-        obj = context.active_object
-        problem = self._problem(obj)
+        problem = self.problem(context)
         if problem:
-            self.report({"ERROR"}, problem)
-            return {"CANCELLED"}
+            return self.fail(problem)
+        obj = context.active_object
         image = None
         if self.source == "IMAGE":
             image = (bpy.data.images[self.image] if self.image
-                     else images.ensure_noise_image(self.image_resolution, self.seed))
-        material = sand_material.find_sand_material(obj)
-        verb = "Updated"
-        if material is None:
-            material = sand_material.assign_new_material(obj)
-            verb = "Added"
-        sand_material.update_material(material, {
-            "Threshold": self.threshold, "Glint Size": self.glint_size,
-            "Facing Power": self.facing_power, "Color": self.color,
-            "Strength": self.strength, "Seed": float(self.seed)}, image)
-        self.report({"INFO"}, f"{verb} '{material.name}' on '{obj.name}'")
+                     else sand.ensure_noise_image(self.image_resolution, self.seed))
+        values = {"Threshold": self.threshold, "Glint Size": self.glint_size,
+                  "Facing Power": self.facing_power, "Color": self.color, "Strength": self.strength,
+                  "Seed": float(self.seed)}
+        material, added = sand.apply(obj, values, image)
+        self.report({"INFO"}, f"{'Added' if added else 'Updated'} '{material.name}' on '{obj.name}'")
         return {"FINISHED"}
 
 

@@ -1,0 +1,104 @@
+"""What Sandscape made, and how to find it again: one custom-property key per kind of data.
+
+Data we make carries its key with a kind as the value (an object: OBJECT_KEY = "walker",
+"sun", ...). Lookups go through the scene the operator runs in, never through all of
+bpy.data, so two scenes keep their own sun, sky, dust and compositor. A user's data is never
+matched by its name, and nodes inside our trees are found by node.name (labels are the
+artist's to change). The key names are those of files saved by earlier versions.
+"""
+
+import bpy
+
+from ..node_groups import helper
+
+GROUP_KEY = helper.GROUP_KEY  # node groups: found by this key (the builder's NAME), never by name
+OBJECT_KEY = "sandscape_object"
+MATERIAL_KEY = "sandscape_material"
+IMAGE_KEY = "sandscape_image"
+WORLD_KEY = "sandscape_world"
+TREE_KEY = "sandscape_compositor"
+TERRAIN_KEY = "sandscape_terrain"  # on footprint data: the terrain it belongs to
+
+# Kinds of objects
+SUN, DUST_VOLUME = "sun", "dust_volume"
+WALKER, WALK_PATH = "walker", "walk_path"
+FOOTPRINTS, PATCH, PRINT_FRAME = "footprints", "footprint_patch", "print_frame"
+# Kinds of materials, images, worlds
+SAND, DUST = "sand", "dust"
+GLINT_NOISE, PRINT_MAP = "glint_noise", "print_map"
+SKY = "sky"
+
+
+def mark(block, key, kind, **links):
+    """Tag a data-block as ours; links are more custom properties (a terrain, a seed)."""
+    block[key] = kind
+    for name, value in links.items():
+        block[name] = value
+    return block
+
+
+def scene_objects(scene, kind, **match):
+    """Our objects of a kind in this scene, optionally matching more custom properties."""
+    return [obj for obj in scene.objects if obj.get(OBJECT_KEY) == kind
+            and all(obj.get(name) == value for name, value in match.items())]
+
+
+def scene_object(scene, kind, **match):
+    found = scene_objects(scene, kind, **match)
+    return found[0] if found else None
+
+
+def slot_material(obj, kind):
+    """Our material of a kind in one of the object's slots, or None."""
+    for slot in getattr(obj, "material_slots", ()):
+        if slot.material is not None and slot.material.get(MATERIAL_KEY) == kind:
+            return slot.material
+    return None
+
+
+def image(kind, **match):
+    """Our image of a kind (images belong to no scene: match what owns it, a terrain or a seed)."""
+    for candidate in bpy.data.images:
+        if candidate.get(IMAGE_KEY) == kind and all(candidate.get(k) == v for k, v in match.items()):
+            return candidate
+    return None
+
+
+def scene_world(scene):
+    """The scene's world when it is ours, else None."""
+    world = scene.world
+    return world if world is not None and world.get(WORLD_KEY) else None
+
+
+def scene_compositor(scene):
+    """The scene's compositor tree when it is ours, else None."""
+    tree = scene.compositing_node_group
+    return tree if tree is not None and tree.get(TREE_KEY) else None
+
+
+def node(tree, name):
+    """One of our nodes in a tree we built, by its node name (labels are the artist's)."""
+    return tree.nodes.get(name) if tree is not None else None
+
+
+def not_editable(block):
+    """Why a data-block cannot take our changes (linked, overridden, not editable), or None.
+
+    Sandscape adds modifiers, materials and objects next to the artist's data; on linked
+    data they would be lost on save, and on a library override they come back half-made
+    after reopening. So both are refused before anything changes.
+    """
+    if block is None:
+        return None
+    if block.library is not None:
+        return (f"'{block.name}' is linked from {block.library.filepath}: make it local first "
+                "(Object > Library Override or Make Local)")
+    if block.override_library is not None:
+        return (f"'{block.name}' is a library override: make it local first (Object > Library "
+                "Override > Make Local), Sandscape's changes to it would not be kept")
+    if not block.is_editable:
+        return f"'{block.name}' cannot be edited"
+    data = getattr(block, "data", None)
+    if isinstance(data, bpy.types.ID) and data is not block:
+        return not_editable(data)
+    return None

@@ -1,0 +1,25 @@
+"""The scene's units: Sandscape's settings are physical (a 0.7 m stride), scenes are in their own
+units (unit scale 0.01 makes one unit a centimetre). Convert at the edge, report in the
+scene's own unit system."""
+
+import math
+
+import bpy
+
+
+def metres_per_unit(scene):
+    scale = scene.unit_settings.scale_length
+    return scale if math.isfinite(scale) and scale > 0 else 1.0
+
+
+def to_units(scene, metres):
+    """Metres to scene units (a 0.7 m stride is 70 units at unit scale 0.01)."""
+    return metres / metres_per_unit(scene)
+
+
+def length_text(scene, units):
+    """A length in scene units as the scene shows it ('9.8 mm' for 0.98 units at scale 0.01)."""
+    system = scene.unit_settings.system
+    if system == "NONE":
+        return f"{units:.4g}"
+    return bpy.utils.units.to_string(system, "LENGTH", units * metres_per_unit(scene), precision=3)

@@ -1,0 +1,101 @@
+"""What every Sandscape operator shares: poll() for the structure a button needs (with a poll
+message saying what is missing), value checks before any data changes, one-line reports.
+
+poll() answers "can this run here at all?" (a mesh is active, a terrain is set); values that
+are out of range, NaN or inf are execute()'s to refuse, with an ERROR report and CANCELLED.
+"""
+
+import math
+
+from ..blender import ownership, units
+
+
+class SandscapeOperator:
+    bl_options = {"REGISTER", "UNDO"}
+
+    # (condition(context) -> bool, message) pairs that poll() checks in order.
+    POLL = ()
+
+    @classmethod
+    def poll(cls, context):
+        if context.scene is None:
+            return False
+        if context.scene.library is not None or context.scene.override_library is not None:
+            cls.poll_message_set("The scene is linked from a library: Sandscape changes only local scenes")
+            return False
+        for condition, message in cls.POLL:
+            if not condition(context):
+                cls.poll_message_set(message)
+                return False
+        return True
+
+    def fail(self, message):
+        self.report({"ERROR"}, message)
+        return {"CANCELLED"}
+
+
+# Conditions shared by several operators' POLL tables.
+def active_mesh(context):
+    obj = context.active_object
+    return obj is not None and obj.type == "MESH"
+
+
+def has_camera(context):
+    return context.scene.camera is not None
+
+
+def value_problem(settings, limits, scene):
+    """The first numeric setting that is not finite or not within its limits, as a sentence.
+
+    limits: property name -> (low, high), inclusive, in metres for lengths and speeds (which
+    the settings hold in scene units) and in the property's own unit otherwise.
+    """
+    for prop in settings.bl_rna.properties:
+        if prop.type not in {"FLOAT", "INT"} or prop.identifier == "rna_type":
+            continue
+        raw = getattr(settings, prop.identifier)
+        values = list(raw) if getattr(prop, "is_array", False) else [raw]
+        physical = prop.unit in {"LENGTH", "VELOCITY"}
+        scale = units.metres_per_unit(scene) if physical else 1.0
+        shown = [v * scale for v in values]
+        text = ", ".join(_number(v, prop, scene) for v in values)
+        if not all(math.isfinite(v) for v in shown):
+            return f"{prop.name} must be a number, got {text}"
+        low, high = limits.get(prop.identifier, (-math.inf, math.inf))
+        if not all(_within(v, low, high) for v in shown):
+            if physical:
+                low_text, high_text = (units.length_text(scene, v / scale) for v in (low, high))
+                bounds = f"{low_text} .. {high_text}"
+            elif prop.subtype == "ANGLE":
+                bounds = f"{math.degrees(low):g}° .. {math.degrees(high):g}°"
+            else:
+                bounds = f"{low:g} .. {high:g}"
+            return f"{prop.name} must lie in {bounds}, got {text}"
+    return None
+
+
+def _within(value, low, high):
+    """low <= value <= high, give or take single-precision storage (90 degrees reads back 4e-8
+    above pi / 2)."""
+    def slack(bound):
+        return 1e-6 * abs(bound) if math.isfinite(bound) else 0.0
+    return low - slack(low) <= value <= high + slack(high)
+
+
+def _number(value, prop, scene):
+    if not math.isfinite(value):
+        return str(value)
+    if prop.unit == "LENGTH":
+        return units.length_text(scene, value)
+    if prop.subtype == "ANGLE":
+        return f"{math.degrees(value):g}°"
+    return f"{value:g}"
+
+
+def editable_problem(*blocks):
+    """Why one of these data-blocks cannot take Sandscape's changes, or None."""
+    for block in blocks:
+        problem = ownership.not_editable(block)
+        if problem:
+            return problem
+    return None

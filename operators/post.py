@@ -1,0 +1,61 @@
+"""The post-effects operator: the gated blur and god rays in the scene's compositor."""
+
+import bpy
+
+from ..blender import atmosphere, post
+from ..core import post as post_twin
+from ..ui.properties import SandscapePostSettings
+from .base import SandscapeOperator, value_problem
+
+
+def _camera_for_rays(context):
+    return not context.scene.sandscape_post.use_god_rays or context.scene.camera is not None
+
+
+def _sun_for_rays(context):
+    return not context.scene.sandscape_post.use_god_rays or atmosphere.scene_sun(context.scene) is not None
+
+
+def settings_problem(scene, settings):
+    problem = value_problem(settings, SandscapePostSettings.LIMITS, scene)
+    if problem or not settings.use_god_rays:
+        return problem
+    try:
+        post_twin.check_rays(settings.samples, settings.ray_density, settings.ray_weight, settings.ray_decay,
+                             settings.ray_exposure)
+    except post_twin.PostError as error:
+        return str(error).capitalize()
+    return None
+
+
+class SANDSCAPE_OT_add_post_effects(SandscapeOperator, bpy.types.Operator):
+    """Add or update the compositor: gated blur of the scattered light and god rays towards the sun"""
+
+    bl_idname = "sandscape.add_post_effects"
+    bl_label = "Add Post Effects"
+    POLL = (
+        (_camera_for_rays, "The scene has no camera: god rays need one to place the sun on screen"),
+        (_sun_for_rays, "No sun lamp: run Add Atmosphere first, or add a sun"),
+    )
+
+    def execute(self, context):
+        scene = context.scene
+        settings = scene.sandscape_post
+        problem = settings_problem(scene, settings)
+        if problem:
+            return self.fail(problem)
+        done = post.apply_post_effects(scene, settings)
+        switches = (("gated blur", settings.use_blur), ("god rays", settings.use_god_rays))
+        effects = [name for name, on in switches if on] or ["none"]
+        replaced = f"; compositor '{done['replaced'].name}' kept with a fake user" if done["replaced"] else ""
+        keyed = f", sun keyed on {len(done['curve'])} frames" if done["curve"] else ""
+        keyed += "; render engine set to Cycles (the passes are Cycles')" if done["switched_engine"] else ""
+        self.report({"INFO"}, f"Post effects: {', '.join(effects)}{keyed}{replaced}")
+        if settings.use_blur and scene.cycles.use_denoising:
+            # The volume passes are not denoised: the combined image minus a noisy pass shows specks.
+            self.report({"WARNING"}, "Render denoising is on: the gated blur swaps noisy scattered light "
+                        "into a denoised image. Switch denoising off, or the blur")
+        return {"FINISHED"}
+
+
+classes = (SANDSCAPE_OT_add_post_effects,)
