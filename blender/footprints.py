@@ -214,6 +214,11 @@ def ensure_print_frame(scene, terrain, collection):
     return frame
 
 
+def frame_world(frame):
+    """The print frame's world matrix from its parent, now (matrix_world waits for an update)."""
+    return frame.parent.matrix_world @ frame.matrix_parent_inverse @ frame.matrix_basis
+
+
 def write_points(scene, terrain, frame, points, collection):
     """Create or update the footprints object of a terrain: one vertex per print, attributes.
 
@@ -352,7 +357,7 @@ def ensure_patch(scene, terrain, frame, low, high, collection, pixel_size=1.0):
     depsgraph.update()
     centres = np.empty(len(mesh.polygons) * 3, np.float32)
     mesh.polygons.foreach_get("center", centres)
-    to_frame = np.array(frame.matrix_world.inverted() @ terrain.matrix_world)
+    to_frame = np.array(frame_world(frame).inverted() @ terrain.matrix_world)
     in_frame = centres.reshape(-1, 3).astype(np.float64) @ to_frame[:3, :3].T + to_frame[:3, 3]
     keep = painter.faces_in_region(in_frame, low, high)
     patch = find_object(scene, own.PATCH, terrain)
@@ -509,7 +514,7 @@ def emit(scene, settings, progress=None, walked=None):
         raise FootprintError(f"No print lands on '{terrain.name}': the walk never crosses it")
     collection = terrain.users_collection[0] if terrain.users_collection else scene.collection
     frame = ensure_print_frame(scene, terrain, collection)
-    origin = np.array(frame.matrix_world.translation)
+    origin = np.array(frame_world(frame).translation)
     forward = np.asarray(steps["forward"], dtype=np.float64)
     rng = np.random.default_rng(settings.seed)
     scale = 1.0 + settings.variation * rng.uniform(-1.0, 1.0, len(hits))
