@@ -9,6 +9,16 @@ import bpy
 def run_execute(idname, context=None, **props):
     """execute() of operator `idname` ("sandscape.paint_footprints") on a stand-in for the operator:
     its property defaults, then props, and its own methods. Returns (result set, [(kinds, text)])."""
+    return _run(idname, "execute", context, props)
+
+
+def run_invoke(idname, context=None, **props):
+    """invoke() as a button click does it, which a background session cannot: bpy.ops falls back to
+    execute() without a window. Only props count as set by the caller."""
+    return _run(idname, "invoke", context, props)
+
+
+def _run(idname, method, context, props):
     module, name = idname.split(".")
     cls = getattr(bpy.types, f"{module.upper()}_OT_{name}")
     rna = getattr(getattr(bpy.ops, module), name).get_rna_type()
@@ -18,12 +28,15 @@ def run_execute(idname, context=None, **props):
     stand_in = types.SimpleNamespace(**{**values, **props}, bl_rna=rna,
                                      report=lambda kinds, text: reports.append((set(kinds), text)))
     stand_in.properties = stand_in  # an operator's own properties, as value checks read them
+    stand_in.is_property_set = lambda name: name in props
     for base in reversed(cls.__mro__):
         if base.__module__.startswith("bpy"):
             continue
         for attr, value in vars(base).items():
-            if isinstance(value, types.FunctionType) and attr != "execute":
+            if isinstance(value, types.FunctionType) and attr != method:  # invoke() calls execute()
                 setattr(stand_in, attr, types.MethodType(value, stand_in))
             elif not attr.startswith("__") and not callable(value) and not hasattr(stand_in, attr):
                 setattr(stand_in, attr, value)
+    if method == "invoke":
+        return cls.invoke(stand_in, context or bpy.context, None), reports
     return cls.execute(stand_in, context or bpy.context), reports

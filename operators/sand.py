@@ -8,7 +8,8 @@ from ..node_groups import glints
 from .base import SandscapeOperator, active_mesh, editable_problem, value_problem
 
 # The operator mirrors the group's inputs: name, tooltip and default come from its socket table.
-MIRROR = {name: {"name": name, "description": spec[1], "default": spec[2]}
+# SKIP_SAVE: a value not passed is not the last run's but the material's (invoke) or the default.
+MIRROR = {name: {"name": name, "description": spec[1], "default": spec[2], "options": {"SKIP_SAVE"}}
           for name, spec in glints.INPUTS.items()}
 GLINT_SIZE_METRES = glints.INPUTS["Glint Size"][2]
 
@@ -27,7 +28,7 @@ class SANDSCAPE_OT_add_sand_material(SandscapeOperator, bpy.types.Operator):
         name="Glint Source",
         items=(("PROCEDURAL", "Procedural", "Seeded white noise on object-space cells of Glint Size"),
                ("IMAGE", "Image", "A noise image through the mesh UVs: one texel, one grain")),
-        default="PROCEDURAL")
+        default="PROCEDURAL", options={"SKIP_SAVE"})
     threshold: FloatProperty(**MIRROR["Threshold"], soft_min=0.0, soft_max=1.0, subtype="FACTOR")
     glint_size: FloatProperty(**MIRROR["Glint Size"], soft_min=1e-5, soft_max=1.0, subtype="DISTANCE",
                               unit="LENGTH", precision=4)
@@ -35,12 +36,13 @@ class SANDSCAPE_OT_add_sand_material(SandscapeOperator, bpy.types.Operator):
     color: FloatVectorProperty(**MIRROR["Color"], size=4, subtype="COLOR", soft_min=0.0, soft_max=1.0)
     strength: FloatProperty(**MIRROR["Strength"], soft_min=0.0, soft_max=1000.0)
     seed: IntProperty(name="Seed", description="Another seed, another set of glinting grains",
-                      default=0, min=0, max=2 ** 24)
+                      default=0, min=0, max=2 ** 24, options={"SKIP_SAVE"})
     image: StringProperty(
-        name="Image", description="Image for the Image source; empty makes a seeded noise image")
+        name="Image", description="Image for the Image source; empty makes a seeded noise image",
+        options={"SKIP_SAVE"})
     image_resolution: IntProperty(
         name="Noise Resolution", description="Size of the generated noise image in texels",
-        default=1024, min=1, max=16384)
+        default=1024, min=1, max=16384, options={"SKIP_SAVE"})
 
     def invoke(self, context, _event):
         """Start from the material the object has (the sidebar's Update button), else from the

@@ -1,0 +1,177 @@
+"""What the artist sees: the sidebar's panels, the Add menus, buttons live only when they can run,
+and Update Sand Material starting from the material as it is."""
+
+import types
+
+import bpy
+import pytest
+
+from devtools import operators, readback
+
+
+class RecordingLayout:
+    def __init__(self):
+        self.calls = []
+
+    def operator(self, idname, **kwargs):
+        self.calls.append(("operator", idname, kwargs.get("text")))
+        return types.SimpleNamespace()  # takes the properties a menu or panel sets on the button
+
+    def menu(self, idname, **kwargs):
+        self.calls.append(("menu", idname, kwargs.get("text")))
+
+    def separator(self, **kwargs):
+        pass
+
+    def row(self, **kwargs):
+        return self
+
+    def prop(self, data, name, text=None, **kwargs):
+        self.calls.append(("prop", data, name, text))
+
+    def label(self, text="", **kwargs):
+        self.calls.append(("label", text))
+
+    def template_ID(self, data, name, **kwargs):
+        self.calls.append(("template_ID", data, name))
+
+    def column(self, **kwargs):
+        return self
+
+
+def draw_panel():
+    layout = RecordingLayout()
+    bpy.types.SANDSCAPE_PT_sand.draw(types.SimpleNamespace(layout=layout), bpy.context)
+    return layout.calls
+
+
+def test_sub_panels_in_the_sandscape_tab(sandscape):
+    for name in ("sand", "footprints", "atmosphere", "render"):
+        panel = getattr(bpy.types, f"SANDSCAPE_PT_{name}")
+        where = (panel.bl_space_type, panel.bl_region_type, panel.bl_category)
+        assert where == ("VIEW_3D", "UI", "Sandscape")
+        assert panel.bl_parent_id == "SANDSCAPE_PT_main"
+
+
+def test_render_panel_offers_the_presets_and_the_optimizer():
+    layout = RecordingLayout()
+    bpy.types.SANDSCAPE_PT_render.draw(types.SimpleNamespace(layout=layout), bpy.context)
+    operators = [c[1] for c in layout.calls if c[0] == "operator"]
+    assert operators.count("sandscape.apply_quality_preset") == 3
+    assert operators.count("sandscape.optimize_scene") == 2
+
+
+def test_panel_offers_add_then_shows_live_inputs(sandscape):
+    readback.uv_plane()
+    calls = draw_panel()
+    assert ("operator", "sandscape.add_sand_material", "Add Sand Material") in calls
+    assert not [c for c in calls if c[0] == "prop"]
+
+    bpy.ops.sandscape.add_sand_material(threshold=0.6)
+    calls = draw_panel()
+    assert ("operator", "sandscape.add_sand_material", "Update Sand Material") in calls
+    props = {c[3]: c[1] for c in calls if c[0] == "prop"}
+    assert list(props) == ["Threshold", "Glint Size", "Facing Power", "Color", "Strength", "Seed"]
+    # The panel edits the material's own node sockets: live, no copy to keep in sync.
+    node = sandscape.blender.sand.glint_node(bpy.context.active_object.active_material)
+    assert props["Threshold"] == node.inputs["Threshold"]
+
+
+def test_panel_shows_the_glint_image(sandscape):
+    readback.uv_plane()
+    bpy.ops.sandscape.add_sand_material(source="IMAGE", image_resolution=8)
+    calls = draw_panel()
+    assert any(c[0] == "template_ID" and c[2] == "image" for c in calls)
+    assert "Noise" not in {c[3] for c in calls if c[0] == "prop"}  # linked inputs are not shown
+
+
+def test_footprints_panel_shows_every_setting_and_the_buttons():
+    layout = RecordingLayout()
+    bpy.types.SANDSCAPE_PT_footprints.draw(types.SimpleNamespace(layout=layout), bpy.context)
+    shown = {call[2] for call in layout.calls if call[0] == "prop"}
+    operators = [call[1] for call in layout.calls if call[0] == "operator"]
+    assert operators == ["sandscape.add_walker", "sandscape.emit_footprints", "sandscape.paint_footprints"]
+    settings = bpy.context.scene.sandscape_footprints
+    names = {p.identifier for p in settings.bl_rna.properties if p.identifier not in ("rna_type", "name")}
+    # Everything but the other source's object and the range the scene supplies.
+    assert names - shown == {"particle_object", "frame_start", "frame_end"}
+    settings.source, settings.use_scene_range = "PARTICLES", False
+    layout = RecordingLayout()
+    bpy.types.SANDSCAPE_PT_footprints.draw(types.SimpleNamespace(layout=layout), bpy.context)
+    assert {"particle_object", "frame_start", "frame_end"} <= {c[2] for c in layout.calls if c[0] == "prop"}
+
+
+def test_atmosphere_panel_shows_its_settings_and_button():
+    layout = RecordingLayout()
+    bpy.types.SANDSCAPE_PT_atmosphere.draw(types.SimpleNamespace(layout=layout), bpy.context)
+    shown = {call[2] for call in layout.calls if call[0] == "prop"}
+    for settings in (bpy.context.scene.sandscape_atmosphere, bpy.context.scene.sandscape_post):
+        names = {p.identifier for p in settings.bl_rna.properties} - {"rna_type", "name"}
+        assert names <= shown
+    operators = [c[1] for c in layout.calls if c[0] == "operator"]
+    assert operators == ["sandscape.add_atmosphere", "sandscape.add_post_effects"]
+
+
+def test_every_operator_polls_through_the_shared_mixin(sandscape):
+    names = [name for name in dir(bpy.types) if name.startswith("SANDSCAPE_OT_")]
+    assert len(names) >= 10
+    for name in names:
+        cls = getattr(bpy.types, name)
+        assert issubclass(cls, sandscape.operators.base.SandscapeOperator), name
+        assert cls.__doc__ and cls.bl_options == {"REGISTER", "UNDO"}, name
+
+
+@pytest.mark.parametrize("source, edits", [
+    ("PROCEDURAL", {"Strength": 60.0, "Seed": 7.0}), ("IMAGE", {"Strength": 60.0, "Threshold": 0.5})])
+def test_update_sand_material_starts_from_the_material(sandscape, source, edits):
+    plane = readback.uv_plane()
+    bpy.ops.sandscape.add_sand_material(source=source, image_resolution=8, strength=30.0, seed=0)
+    node = sandscape.blender.sand.glint_node(plane.active_material)
+    for name, value in edits.items():  # edited in the sidebar
+        node.inputs[name].default_value = value
+    result, _ = operators.run_invoke("sandscape.add_sand_material")  # the Update button
+    assert result == {"FINISHED"}
+    node = sandscape.blender.sand.glint_node(plane.active_material)
+    for name, value in edits.items():
+        assert node.inputs[name].default_value == pytest.approx(value), name
+    image = sandscape.blender.sand.image_node(plane.active_material)
+    assert (image is not None) == (source == "IMAGE")  # the source as it was
+
+
+def test_shift_a_offers_sandscape(sandscape):
+    assert sandscape.ui.menus.draw_view3d_add in bpy.types.VIEW3D_MT_add._dyn_ui_initialize()
+    layout = RecordingLayout()
+    bpy.types.VIEW3D_MT_sandscape_add.draw(types.SimpleNamespace(layout=layout), bpy.context)
+    assert [c[1] for c in layout.calls] == ["sandscape.add_walker", "sandscape.add_atmosphere",
+                                           "sandscape.build_demo_scene"]
+
+
+@pytest.mark.parametrize("tree_type, expected", [
+    ("ShaderNodeTree", {"Sandscape Glints", "Sandscape Glint Shade", "Sandscape Footprint Height",
+                        "Sandscape Dust Volume", "Sandscape Dust Field"}),
+    ("CompositorNodeTree", {"Sandscape Gated Blur", "Sandscape God Rays 32"}),
+    ("GeometryNodeTree", set()),
+])
+def test_node_editors_add_menus_list_our_groups(sandscape, tree_type, expected):
+    context = types.SimpleNamespace(space_data=types.SimpleNamespace(tree_type=tree_type))
+    menu = bpy.types.NODE_MT_sandscape_groups
+    assert menu.poll(context) == bool(expected)
+    layout = RecordingLayout()
+    menu.draw(types.SimpleNamespace(layout=layout), context)
+    shown = {"Sandscape " + c[2] for c in layout.calls if c[0] == "operator"}
+    assert shown == expected
+    assert sandscape.ui.menus.draw_node_add in bpy.types.NODE_MT_add._dyn_ui_initialize()
+
+
+def test_adding_a_group_from_the_menu_ensures_it_first(sandscape):
+    material = bpy.data.materials.new("Theirs")
+    tree = material.node_tree
+    space = types.SimpleNamespace(type="NODE_EDITOR", edit_tree=tree, cursor_location=(100.0, 50.0))
+    context = types.SimpleNamespace(space_data=space, scene=bpy.context.scene)
+    result, _ = operators.run_execute("sandscape.add_node_group", context, group="Sandscape Footprint Height")
+    assert result == {"FINISHED"}
+    node = tree.nodes.active
+    assert node.node_tree.get("sandscape_group") == "Sandscape Footprint Height"
+    assert tuple(node.location) == (100.0, 50.0) and node.select
+    result, reports = operators.run_execute("sandscape.add_node_group", context, group="Sandscape Gated Blur")
+    assert result == {"CANCELLED"} and "CompositorNodeTree" in reports[0][1]  # not in a shader tree
