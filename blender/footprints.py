@@ -391,24 +391,23 @@ def ensure_patch(scene, terrain, frame, low, high, collection, pixel_size=1.0):
 
 
 def _keep_faces(mesh, keep):
-    """Delete the faces not kept, carrying the whole terrain's vertex normals over as custom
+    """Delete the faces not kept, carrying the whole terrain's corner normals over as custom
     normals: the patch's own border vertices would otherwise average only its faces."""
-    smooth = not any(p.use_smooth is False for p in mesh.polygons)
-    normals = np.empty(len(mesh.vertices) * 3, np.float32)
-    mesh.vertices.foreach_get("normal", normals)
+    normals = np.empty(len(mesh.loops) * 3, np.float32)
+    mesh.corner_normals.foreach_get("vector", normals)
     bm = bmesh.new()
     bm.from_mesh(mesh)
-    layer = bm.verts.layers.int.new("sandscape_source_vertex")
-    for vertex in bm.verts:
-        vertex[layer] = vertex.index
+    layer = bm.loops.layers.int.new("sandscape_source_corner")
+    for face in bm.faces:
+        for corner in face.loops:
+            corner[layer] = corner.index
     bm.faces.ensure_lookup_table()
     bmesh.ops.delete(bm, geom=[bm.faces[i] for i in np.flatnonzero(~keep)], context="FACES")
-    source = [vertex[layer] for vertex in bm.verts]
-    bm.verts.layers.int.remove(layer)
+    source = [corner[layer] for face in bm.faces for corner in face.loops]
+    bm.loops.layers.int.remove(layer)
     bm.to_mesh(mesh)
     bm.free()
-    if smooth:
-        mesh.normals_split_custom_set_from_vertices(normals.reshape(-1, 3)[source].tolist())
+    mesh.normals_split_custom_set(normals.reshape(-1, 3)[source].tolist())
 
 
 def ensure_cut(terrain, frame, low, high):

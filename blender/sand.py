@@ -204,7 +204,9 @@ def attach_footprints(material, image, space_object, values):
     for name, value in values.items():
         if name in node.inputs and name != "Frame":
             node.inputs[name].default_value = value
-    material.displacement_method = "DISPLACEMENT"
+    # Displacement and bump: the prints are true geometry, and the shading normal stays the
+    # smooth one (true displacement alone shades the adaptive patch by its flat base quads).
+    material.displacement_method = "BOTH"
     return node
 
 

@@ -5,14 +5,17 @@ the rest of the terrain stays coarse. A face is cut when its centre, in the spac
 Frame object (the print frame: world-aligned and in world units when the prints were
 painted), lies inside the box Min..Max in X and Y; the patch keeps exactly those faces (same
 test), so the two meet without a gap or an overlap. Without a Frame, the box is in the
-terrain's own space. Twin: core.footprints.faces_in_region on frame-space face centres.
+terrain's own space. The faces left keep the normals they had: deleting faces would otherwise
+turn the border vertices' normals and show a seam. Twin: core.footprints.faces_in_region on
+frame-space face centres.
 """
 
 from . import helper as h
 
 NAME = "Sandscape Region Cut"
-VERSION = 2
+VERSION = 3
 TREE_TYPE = "GeometryNodeTree"
+NORMAL_ATTRIBUTE = "sandscape_cut_normal"
 DESCRIPTION = (
     "Deletes faces whose centre lies inside Min..Max (X and Y of the Frame object's space): the "
     "footprint patch draws them instead")
@@ -51,11 +54,24 @@ def build(tree):
     inside = h.add_node(tree, "FunctionNodeBooleanMath", label="Inside", operation="AND")
     h.link(tree, above.outputs[0], inside.inputs[0])
     h.link(tree, below.outputs[0], inside.inputs[1])
+    normal = h.add_node(tree, "GeometryNodeInputNormal")
+    keep = h.add_node(tree, "GeometryNodeStoreNamedAttribute", label="Normals Before the Cut",
+                      data_type="FLOAT_VECTOR", domain="CORNER", inputs={"Name": NORMAL_ATTRIBUTE})
+    h.link(tree, inputs["Geometry"], keep.inputs["Geometry"])
+    h.link(tree, normal.outputs["Normal"], keep.inputs["Value"])
     delete = h.add_node(tree, "GeometryNodeDeleteGeometry", domain="FACE")
-    h.link(tree, inputs["Geometry"], delete.inputs["Geometry"])
+    h.link(tree, keep.outputs["Geometry"], delete.inputs["Geometry"])
     h.link(tree, inside.outputs[0], delete.inputs["Selection"])
-    h.link(tree, delete.outputs[0], group_out.inputs["Geometry"])
+    kept = h.add_node(tree, "GeometryNodeInputNamedAttribute", data_type="FLOAT_VECTOR",
+                      inputs={"Name": NORMAL_ATTRIBUTE})
+    restore = h.add_node(tree, "GeometryNodeSetMeshNormal", label="Same Normals After", mode="FREE",
+                         domain="CORNER")
+    h.link(tree, delete.outputs[0], restore.inputs["Mesh"])
+    h.link(tree, kept.outputs["Attribute"], restore.inputs["Custom Normal"])
+    tidy = h.add_node(tree, "GeometryNodeRemoveAttribute", inputs={"Name": NORMAL_ATTRIBUTE})
+    h.link(tree, restore.outputs[0], tidy.inputs["Geometry"])
+    h.link(tree, tidy.outputs[0], group_out.inputs["Geometry"])
     h.frame(tree, "Face Centres in the Print Frame", (frame, to_frame, position, in_frame))
     h.frame(tree, "Inside the Region", (above, below, inside))
-    h.frame(tree, "Cut", (delete,))
+    h.frame(tree, "Cut, Normals Kept", (normal, keep, delete, kept, restore, tidy))
     h.arrange(tree)

@@ -45,7 +45,7 @@ def test_rerun_updates_the_same_data(sandscape, walk):
     material = walk.terrain.active_material
     node = sandscape.blender.sand.footprint_node(material)
     assert node.inputs["Depth"].default_value == pytest.approx(0.05)
-    assert material.displacement_method == "DISPLACEMENT"
+    assert material.displacement_method == "BOTH"
     assert [m.type for m in walk.terrain.modifiers] == ["NODES"]
     # The glint material and the footprints live in one material, on terrain and patch alike.
     assert sandscape.blender.sand.glint_node(material) is not None
