@@ -9,7 +9,9 @@ bpy.ops.sandscape.paint_footprints, a perspective camera looking across it, Cycl
 Geometry memory comes from Cycles' own statistics (_cycles.enable_print_stats()), read
 from the process's stdout. Also compares the rendered heights of both (they must agree).
 
-Run: .venv/bin/python bench/footprint_dicing.py [--no-append]
+--quick renders at a quarter of the pixels (dicing follows pixels, so memory drops too).
+
+Run: .venv/bin/python bench/footprint_dicing.py [--quick] [--no-append]
 """
 
 import argparse
@@ -60,8 +62,10 @@ def geometry_memory(text):
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true", help="a quarter of the pixels")
     parser.add_argument("--no-append", action="store_true")
     args = parser.parse_args(argv)
+    resolution = (RESOLUTION[0] // 2, RESOLUTION[1] // 2) if args.quick else RESOLUTION
     root = session.isolate()
     import bpy
 
@@ -78,7 +82,7 @@ def main(argv=None):
                                      range(frames[0], frames[1] + 1))
     scenes.footprint_settings(terrain, walker, frames, resolution=2048)
     bpy.ops.sandscape.paint_footprints()
-    scene = readback.cycles_scene(resolution=RESOLUTION, samples=1)
+    scene = readback.cycles_scene(resolution=resolution, samples=1)
     scene.frame_set(frames[1])
     scenes.camera("PERSP", location=(0.0, -6.0, 2.5), rotation=(np.radians(70), 0.0, 0.0), lens=35.0)
     material = terrain.active_material
@@ -111,9 +115,9 @@ def main(argv=None):
         rows.append((name, seconds, memory, found))
         print(name, f"{seconds:.2f} s", f"{memory:.2f} MiB", found[:4])
     difference = np.abs(renders["patch"][1][..., 0] - renders["whole"][1][..., 0])
-    lines = [results.heading("Footprint dicing"),
+    lines = [results.heading("Footprint dicing", ["--quick"] if args.quick else []),
              f"{results.machine()}. 40 m terrain of 80x80 quads, 12 prints, "
-             f"{RESOLUTION[0]}x{RESOLUTION[1]} perspective, 1 spp, "
+             f"{resolution[0]}x{resolution[1]} perspective, 1 spp, "
              "dicing 1 px.\n",
              "| set-up | render s | Cycles geometry memory MiB | per object |", "|---|---|---|---|"]
     for name, seconds, memory, found in rows:

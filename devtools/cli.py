@@ -2,7 +2,7 @@
 
 Subcommands:
   build-demo   build the desert demo from an empty file and save it as a .blend
-  render       render a .blend (a frame, or several) to PNG
+  render       render a .blend (a frame, or several) to an image file
   bench        run a benchmark script from bench/
 
 Long work prints progress lines; bad input exits with status 2 and one clear line.
@@ -11,6 +11,7 @@ With the full Blender instead of the bpy module, the same .blend renders with
 """
 
 import argparse
+import os
 import pathlib
 import subprocess
 import sys
@@ -38,44 +39,81 @@ def blender():
     return bpy, session
 
 
+# Output formats by file extension: the file written is what its name says.
+FORMATS = {".png": "PNG", ".jpg": "JPEG", ".jpeg": "JPEG", ".exr": "OPEN_EXR", ".tif": "TIFF",
+           ".tiff": "TIFF", ".webp": "WEBP"}
+
+
+def writable(path):
+    """The path resolved, its folder made; UsageError when it cannot be written there."""
+    path = pathlib.Path(path).resolve()
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+    except OSError as error:
+        raise UsageError(f"cannot write to '{path.parent}': {error.strerror}") from error
+    if not os.access(path.parent, os.W_OK) or (path.exists() and not os.access(path, os.W_OK)):
+        raise UsageError(f"cannot write '{path}': permission denied")
+    return path
+
+
 def build_demo(args):
-    output = pathlib.Path(args.output).resolve()
-    if output.suffix != ".blend":
+    if pathlib.Path(args.output).suffix != ".blend":
         raise UsageError(f"the output must be a .blend file, got '{args.output}'")
+    output = writable(args.output)
     started = time.perf_counter()
     bpy, session = blender()
     session.reset()
     progress("building the desert demo")
     bpy.ops.sandscape.build_demo_scene()
-    output.parent.mkdir(parents=True, exist_ok=True)
     bpy.ops.wm.save_as_mainfile(filepath=str(output), compress=True)
     progress(f"saved {output} in {time.perf_counter() - started:.1f} s")
 
 
-def render(args):
+def render_checks(args):
+    """Everything about the arguments that can be wrong, before Blender starts."""
     source = pathlib.Path(args.file).resolve()
     if not source.is_file():
         raise UsageError(f"no such .blend file: '{args.file}'")
-    frames = args.frame or []
-    if any(frame < 0 for frame in frames):
+    with open(source, "rb") as handle:
+        magic = handle.read(7)
+    # Plain, gzip- or zstd-compressed .blend files.
+    if not (magic.startswith(b"BLENDER") or magic[:2] == b"\x1f\x8b" or magic[:4] == b"\x28\xb5\x2f\xfd"):
+        raise UsageError(f"'{args.file}' is not a .blend file")
+    if any(frame < 0 for frame in args.frame or []):
         raise UsageError("frames must be 0 or more")
     if args.samples is not None and args.samples < 1:
         raise UsageError(f"samples must be at least 1, got {args.samples}")
+    if (args.width is None) != (args.height is None):
+        raise UsageError("give --width and --height together, or neither")
+    if args.width is not None and not (1 <= args.width <= 65536 and 1 <= args.height <= 65536):
+        raise UsageError(f"--width and --height must lie in 1..65536, got {args.width}x{args.height}")
+    suffix = pathlib.Path(args.output).suffix.lower()
+    if suffix not in FORMATS:
+        raise UsageError(f"the output's extension picks the format: one of {', '.join(FORMATS)}, "
+                         f"got '{args.output}'")
+    return source, writable(args.output), FORMATS[suffix]
+
+
+def render(args):
+    source, output, file_format = render_checks(args)
+    frames = args.frame or []
     bpy, _ = blender()
-    bpy.ops.wm.open_mainfile(filepath=str(source))
+    try:
+        bpy.ops.wm.open_mainfile(filepath=str(source))
+    except RuntimeError as error:
+        raise UsageError(f"cannot open '{args.file}': {str(error).strip()}") from error
     scene = bpy.context.scene
     if scene.camera is None:
         raise UsageError(f"'{source.name}' has no scene camera to render from")
-    if args.width and args.height:
+    if args.width is not None:
         scene.render.resolution_x, scene.render.resolution_y = args.width, args.height
         scene.render.resolution_percentage = 100
     if args.preset:
         bpy.ops.sandscape.apply_quality_preset(preset=args.preset.upper())
     if args.samples is not None:
         scene.cycles.samples = args.samples
-    output = pathlib.Path(args.output).resolve()
-    output.parent.mkdir(parents=True, exist_ok=True)
-    scene.render.image_settings.file_format = "PNG"
+    scene.render.image_settings.file_format = file_format
+    scene.render.use_file_extension = False  # the name given is the name written
     for index, frame in enumerate(frames or [scene.frame_current]):
         scene.frame_set(frame)
         target = output if len(frames) <= 1 else output.with_name(f"{output.stem}_{frame:04d}{output.suffix}")
@@ -103,18 +141,20 @@ def parser():
     build = commands.add_parser("build-demo", help="build the desert demo and save it as a .blend")
     build.add_argument("--output", default="demo.blend", help="the .blend to write (default: demo.blend)")
     build.set_defaults(run=build_demo)
-    frames = commands.add_parser("render", help="render a .blend to PNG")
+    frames = commands.add_parser("render", help="render a .blend to an image file")
     frames.add_argument("file", help="the .blend to render")
-    frames.add_argument("--output", default="out/render.png", help="PNG path; several frames get _NNNN")
+    frames.add_argument("--output", default="out/render.png",
+                        help="image path; its extension picks the format (.png, .jpg, .exr, .tif, .webp); "
+                        "several frames get _NNNN")
     frames.add_argument("--frame", type=int, action="append", help="frame to render (repeatable)")
     frames.add_argument("--width", type=int, help="override the resolution (with --height)")
-    frames.add_argument("--height", type=int)
+    frames.add_argument("--height", type=int, help="override the resolution (with --width)")
     frames.add_argument("--preset", choices=("draft", "preview", "final"),
                         help="a measured quality preset (bench/quality.py)")
     frames.add_argument("--samples", type=int, help="override the Cycles samples (after any preset)")
     frames.set_defaults(run=render)
     timing = commands.add_parser("bench", help="run bench/NAME.py")
-    timing.add_argument("name", help="glints, footprints, footprint_dicing, atmosphere")
+    timing.add_argument("name", help="glints, footprints, footprint_dicing, atmosphere, optimize, quality")
     timing.add_argument("--quick", action="store_true")
     timing.add_argument("--no-append", action="store_true", help="do not write bench/RESULTS.md")
     timing.set_defaults(run=bench)

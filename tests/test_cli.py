@@ -21,24 +21,62 @@ def test_help(command):
     assert result.returncode == 0 and "usage: sandscape" in result.stdout
 
 
-@pytest.mark.parametrize("args, message", [
-    (["render", "/no/such.blend"], "no such .blend"),
-    (["build-demo", "--output", "demo.txt"], "must be a .blend"),
-    (["bench", "nope"], "no benchmark 'nope'"),
-])
-def test_bad_input_exits_2_with_a_message(args, message):
-    result = run(*args)
-    assert result.returncode == 2
-    assert message in result.stderr and result.stderr.count("\n") == 1
-
-
-def test_build_then_render(tmp_path):
-    blend = tmp_path / "demo.blend"
-    built = run("build-demo", "--output", str(blend))
-    assert built.returncode == 0 and blend.is_file(), built.stderr
+@pytest.fixture(scope="module")
+def blend(tmp_path_factory):
+    """A saved demo, built once for the module."""
+    path = tmp_path_factory.mktemp("cli") / "demo.blend"
+    built = run("build-demo", "--output", str(path))
+    assert built.returncode == 0 and path.is_file(), built.stderr
     assert "sandscape: saved" in built.stdout
+    return path
+
+
+@pytest.fixture(scope="module")
+def not_a_blend(tmp_path_factory):
+    path = tmp_path_factory.mktemp("cli") / "notes.blend"
+    path.write_text("not a blend file")
+    return path
+
+
+BAD_INPUT = [
+    (["render", "/no/such.blend"], "no such .blend"),
+    (["render", "{not_a_blend}"], "is not a .blend"),
+    (["render", "{blend}", "--output", "/proc/sandscape/frame.png"], "cannot write"),
+    (["render", "{blend}", "--width", "64"], "--width and --height together"),
+    (["render", "{blend}", "--width", "-10", "--height", "36"], "must lie in 1..65536"),
+    (["render", "{blend}", "--output", "frame.gif"], "extension picks the format"),
+    (["render", "{blend}", "--samples", "0"], "samples must be at least 1"),
+    (["build-demo", "--output", "demo.txt"], "must be a .blend"),
+    (["build-demo", "--output", "/proc/sandscape/demo.blend"], "cannot write"),
+    (["bench", "nope"], "no benchmark 'nope'"),
+]
+
+
+@pytest.mark.parametrize("args, message", BAD_INPUT)
+def test_bad_input_exits_2_with_one_line(blend, not_a_blend, args, message):
+    result = run(*[a.format(blend=blend, not_a_blend=not_a_blend) for a in args])
+    assert result.returncode == 2, result.stderr
+    assert message in result.stderr and result.stderr.count("\n") == 1, result.stderr
+    assert "Traceback" not in result.stderr + result.stdout
+
+
+def test_the_output_extension_picks_the_format(blend, tmp_path):
+    rendered = run("render", str(blend), "--output", str(tmp_path / "frame.jpg"), "--width", "32",
+                   "--height", "18", "--samples", "1")
+    assert rendered.returncode == 0, rendered.stderr
+    assert (tmp_path / "frame.jpg").read_bytes()[:3] == b"\xff\xd8\xff"  # a JPEG, named as asked
+    assert not (tmp_path / "frame.png").exists()
+
+
+def test_build_then_render(blend, tmp_path):
     rendered = run("render", str(blend), "--output", str(tmp_path / "frame.png"), "--frame", "5",
                    "--frame", "9", "--width", "64", "--height", "36", "--samples", "1")
     assert rendered.returncode == 0, rendered.stderr
     assert (tmp_path / "frame_0005.png").is_file() and (tmp_path / "frame_0009.png").is_file()
     assert rendered.stdout.count("sandscape: frame") == 2
+
+
+def test_a_bench_runs_quick_from_the_command_line():
+    result = run("bench", "footprint_dicing", "--quick", "--no-append")
+    assert result.returncode == 0, result.stderr[-2000:]
+    assert "adaptive patch over the prints" in result.stdout
