@@ -108,10 +108,6 @@ class Region:
     def extent(self):
         return self.width * self.texel, self.height * self.texel
 
-    def texel_centre(self, i, j):
-        """Painting-plane coordinates of texel column i, row j (row 0 at y0)."""
-        return self.x0 + (i + 0.5) * self.texel, self.y0 + (j + 0.5) * self.texel
-
 
 def fit_region(centres, reach, resolution, margin=0.0):
     """The smallest texel grid over the prints' bounding box plus reach and margin.
@@ -156,11 +152,10 @@ def _prepare(centres, forward, lateral, births, depth_scales, frame_range):
     return centres, inverse, birth_unit, scales, order
 
 
-def paint(centres, forward, lateral, births, depth_scales, region, sole=None, frame_range=(0.0, 1.0),
-          out=None):
+def paint(centres, forward, lateral, births, depth_scales, region, sole=None, frame_range=(0.0, 1.0)):
     """Stamp prints into a (height, width, 4) float32 image; returns it (rows from y0 up).
 
-    centres (N, 2): print centres in the painting plane (the terrain's local XY).
+    centres (N, 2): print centres in the painting plane (the print frame's X and Y: world-aligned).
     forward, lateral (N, 2): the print's unit forward and lateral axes projected onto the
         plane (on flat ground, (cos h, sin h) and (-sin h, cos h); on a slope, shorter).
     births (N,): frames; depth_scales (N,): per-print multipliers of depth and rim (> 0).
@@ -168,8 +163,7 @@ def paint(centres, forward, lateral, births, depth_scales, region, sole=None, fr
     """
     sole = sole or Sole()
     texel = region.texel
-    if out is None:
-        out = np.zeros((region.height, region.width, 4), dtype=F32)
+    out = np.zeros((region.height, region.width, 4), dtype=F32)
     centres, inverse, birth_unit, scales, order = _prepare(centres, forward, lateral, births,
                                                            depth_scales, frame_range)
     if len(order) == 0:
@@ -250,11 +244,6 @@ def _stamp_chunk(flat, region, sole, window, half, prints, centres, inverse, bir
 def _flush(values):
     # What LOG_FLOOR leaves of a flattened rim (1e-30) is zero, not a denormal speck.
     return np.where(values < 1e-12, 0.0, values)
-
-
-def height(image, depth, rim):
-    """Height in metres from a painted image with every print revealed: rim G - depth R."""
-    return rim * image[..., 1].astype(np.float64) - depth * image[..., 0].astype(np.float64)
 
 
 def frame_span(start, end):
