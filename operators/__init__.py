@@ -1,1 +1,2 @@
-"""Thin operators, one module per capability: validate, call a builder or core, report."""
+"""Thin operators, one module per capability: poll() through base.SandscapeOperator, value
+checks in execute() before anything changes, a call into the bpy layer (blender/), one report."""

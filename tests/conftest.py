@@ -23,6 +23,17 @@ def empty_file():
     yield
 
 
+@pytest.fixture(autouse=True)
+def no_traceback(capfd):
+    """Bad input gets a report, never a traceback: a Python error inside an operator or a
+    handler only shows on stderr (Blender catches it), so every test's output is searched."""
+    yield
+    out, err = capfd.readouterr()
+    sys.stdout.write(out)
+    sys.stderr.write(err)
+    assert "Traceback (most recent call last)" not in out + err, err[-3000:]
+
+
 @pytest.fixture
 def sandscape():
     """The installed extension's package (bl_ext.local.sandscape)."""

@@ -194,3 +194,14 @@ def test_progress_only_moves_forward(sandscape, walk):
     sandscape.blender.footprints.paint(bpy.context.scene, walk, seen.append)
     assert seen and seen == sorted(seen) and 0.0 <= seen[0] and seen[-1] <= 1.0
     assert seen[-1] >= 0.9  # emitting and painting both reported
+
+
+def test_add_walker_refuses_a_range_too_short_to_walk():
+    scene = bpy.context.scene
+    scene.frame_start = scene.frame_end = 7
+    before = readback.data_snapshot()
+    with pytest.raises(RuntimeError, match="too short to walk"):
+        bpy.ops.sandscape.add_walker()
+    assert readback.data_snapshot() == before
+    result, reports = operators.run_execute("sandscape.add_walker")
+    assert result == {"CANCELLED"} and reports[0][0] == {"ERROR"}

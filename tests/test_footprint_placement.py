@@ -61,7 +61,7 @@ def test_prints_lie_on_the_surface_and_follow_the_tangent(surface):
     assert (normals[:, 2] > 0).all()
 
 
-def test_prints_off_the_terrain_are_skipped_and_counted(capsys):
+def test_prints_off_the_terrain_are_skipped_and_counted():
     terrain = scenes.height_field(6.0, 12)
     walker = scenes.keyframed_walker(lambda f: (-2.0 + f * 0.1, 0.0, 1.0), range(0, 61))
     scenes.footprint_settings(terrain, walker, (0, 60), stride=0.5)
