@@ -12,6 +12,7 @@ import numpy as np
 from mathutils import Vector
 
 from ..core import atmosphere as air
+from ..core import sun as sky_sun
 from ..node_groups import dust_field, dust_volume
 from ..node_groups import helper as h
 from . import ownership as own
@@ -20,7 +21,8 @@ from . import units
 # Bump when build_sky_nodes changes: a world built by an older version is rebuilt.
 WORLD_NODES_KEY = "sandscape_sky_nodes"
 WORLD_NODES_VERSION = 2
-SUN_ENERGY = 4.0  # W/m² of the new sun lamp
+SUN_ENERGY = 4.0  # W/m² of a new sun lamp when its light does not come from the sky model
+SKY_SUN_SIZE = 0.009512044  # radians: the Sky Texture's default sun disc, which the lamp copies
 
 
 def scene_sun(scene):
@@ -36,7 +38,9 @@ def sun_rotation(elevation, azimuth):
     return (math.pi / 2 - elevation, 0.0, math.pi - azimuth)
 
 
-def ensure_sun(scene, elevation, azimuth):
+def ensure_sun(scene, elevation, azimuth, from_sky=True):
+    """The scene's sun lamp turned to the sun; from_sky: with the strength and colour of the sky
+    model's own sun at that elevation (core/sun.py), so sky and lamp light the scene as one."""
     sun = scene_sun(scene)
     if sun is None:
         sun = own.mark(bpy.data.objects.new("Sandscape Sun", bpy.data.lights.new("Sandscape Sun", "SUN")),
@@ -45,6 +49,9 @@ def ensure_sun(scene, elevation, azimuth):
         scene.collection.objects.link(sun)
     sun.rotation_mode = "XYZ"
     sun.rotation_euler = sun_rotation(elevation, azimuth)
+    if from_sky:
+        sun.data.energy, sun.data.color = sky_sun.lamp(elevation)
+        sun.data.angle = SKY_SUN_SIZE
     return sun
 
 
@@ -209,7 +216,11 @@ def apply(scene, settings):
     Densities are per metre in the settings and per scene unit in the volume.
     """
     elevation, azimuth = settings.sun_elevation, settings.sun_azimuth
-    sun = ensure_sun(scene, elevation, azimuth)
+    sun = ensure_sun(scene, elevation, azimuth, settings.sun_from_sky)
+    exposure = None
+    if settings.set_exposure:
+        exposure = round(sky_sun.exposure(elevation), 2)
+        scene.view_settings.exposure = exposure
     world, replaced = ensure_sky(scene, elevation, azimuth)
     per_metre = air.rayleigh_coefficients(settings.density, tuple(settings.wavelengths))
     coefficients = np.asarray(per_metre) * units.metres_per_unit(scene)
@@ -225,4 +236,5 @@ def apply(scene, settings):
     if box is not None and field is not None:
         # Ray marching: 1.8-5.8x faster than the default at equal error (bench/atmosphere.py).
         scene.cycles.volume_biased = True
-    return {"sun": sun, "world": world, "replaced": replaced, "volume": box, "coefficients": per_metre}
+    return {"sun": sun, "world": world, "replaced": replaced, "volume": box, "coefficients": per_metre,
+            "exposure": exposure}

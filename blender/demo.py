@@ -78,16 +78,14 @@ def build(context):
     air.sun_elevation, air.sun_azimuth = SUN
     # A wide margin carries the haze to the horizon: a box that ended at the dunes showed the
     # sky's dark ground beyond them.
-    air.density, air.dust_density, air.margin = 0.004, 0.01, 150.0
+    air.density, air.dust_density, air.margin = 0.004, 0.004, 150.0
+    # The sun lamp gets the sky's own sun (reddened 6 degrees up) and the scene the exposure
+    # that shows level ground under it at its own grey.
     atmosphere.apply(scene, air)
-    camera = follow_camera(scene, steps.walker)
-    # Exposure -3 below divides the frame by 8; the rays' exposure of 8 keeps them visible.
-    scene.sandscape_post.ray_exposure = 8.0
-    post.apply_post_effects(scene, scene.sandscape_post)
-    sun = atmosphere.scene_sun(scene)
-    # A sun 6 degrees up shines through a long air path: reddened, as in the sky around it.
-    sun.data.energy, sun.data.color, sun.data.angle = 20.0, (1.0, 0.75, 0.5), math.radians(0.6)
-    # The sky is in physical units: AgX with a lower exposure keeps the low sun's sky in range.
     scene.view_settings.view_transform = "AgX"
-    scene.view_settings.exposure = -3.0
+    camera = follow_camera(scene, steps.walker)
+    # The rays add sun-disc light on top of the image: scaled by the inverse of the exposure,
+    # they keep their brightness on screen.
+    scene.sandscape_post.ray_exposure = 2.0 ** -scene.view_settings.exposure
+    post.apply_post_effects(scene, scene.sandscape_post)
     return {"terrain": terrain, "camera": camera, "walker": steps.walker}

@@ -40,8 +40,10 @@ class SANDSCAPE_OT_add_atmosphere(SandscapeOperator, bpy.types.Operator):
         replaced = (f"; world '{done['replaced'].name}' kept with a fake user (switch back in World "
                     "properties)" if done["replaced"] else "")
         marching = "; volume ray marching on (biased, faster)" if scene.cycles.volume_biased else ""
-        self.report({"INFO"}, f"Sun '{done['sun'].name}', sky '{done['world'].name}', {volume}, "
-                    f"scattering {beta} per metre{replaced}{marching}")
+        sun = done["sun"].data
+        exposure = f"; exposure {done['exposure']:+.2f}" if done["exposure"] is not None else ""
+        self.report({"INFO"}, f"Sun '{done['sun'].name}' {sun.energy:.4g} W/m², sky '{done['world'].name}', "
+                    f"{volume}, scattering {beta} per metre{replaced}{marching}{exposure}")
         return {"FINISHED"}
 
 

@@ -84,7 +84,8 @@ class SANDSCAPE_PT_footprints(SandscapeSubPanel, bpy.types.Panel):
 
 
 ATMOSPHERE_SECTIONS = (
-    ("Sun and Air", ("sun_elevation", "sun_azimuth", "density", "wavelengths", "margin")),
+    ("Sun and Air", ("sun_elevation", "sun_azimuth", "sun_from_sky", "set_exposure", "density", "wavelengths",
+                     "margin")),
     ("Dust", ("dust_density", "anisotropy", "use_wind", "wind", "dust_scale", "coverage", "softness",
               "falloff")),
 )

@@ -114,6 +114,12 @@ class SandscapeAtmosphereSettings(bpy.types.PropertyGroup):
                                  description="Height of the sun above the horizon")
     sun_azimuth: FloatProperty(name="Sun Azimuth", default=math.radians(135.0), subtype="ANGLE",
                                description="Compass direction of the sun: 0 along +Y, 90 degrees along +X")
+    sun_from_sky: BoolProperty(name="Sun from Sky", default=True,
+                               description="Give the sun lamp the strength and colour of the sky model's own "
+                               "sun at this elevation, so lamp and sky light the ground as one")
+    set_exposure: BoolProperty(name="Set Exposure", default=True,
+                               description="Set the scene's exposure so that level grey ground under this "
+                               "sun and sky reads as its own grey")
     density: FloatProperty(name="Density", default=0.02, soft_min=0.0, soft_max=1.0, precision=4,
                            description="Scattering coefficient at 550 nm, per metre; 0 adds no volume at "
                            "all. The volume is a box around the scene: a world volume would block the sun "

@@ -1,0 +1,53 @@
+"""The sun that matches the sky: the lamp's strength and colour, and the exposure to propose,
+from the sky model's own sun (core/sun_table.py, measured in Blender).
+
+Irradiances are in Blender's light units (a sun lamp's strength: W/m² on a surface facing it).
+Between the measured elevations the table is interpolated linearly; below the horizon the disc
+gives nothing.
+"""
+
+import numpy as np
+
+from . import sun_table
+
+_TABLE = np.array(sun_table.ROWS, dtype=np.float64)
+_DEGREES, _DISC, _SKY = _TABLE[:, 0], _TABLE[:, 1:4], _TABLE[:, 4:7]
+LUMINANCE = np.array([0.2126, 0.7152, 0.0722])  # Rec. 709, Blender's linear scene luminance
+
+
+def _interpolate(elevation, columns):
+    degrees = np.clip(np.degrees(float(elevation)), _DEGREES[0], _DEGREES[-1])
+    return np.array([np.interp(degrees, _DEGREES, column) for column in columns.T])
+
+
+def disc_irradiance(elevation):
+    """The sun's irradiance on a surface facing it, (R, G, B), at a sun elevation in radians."""
+    return np.maximum(_interpolate(elevation, _DISC), 0.0)
+
+
+def sky_irradiance(elevation):
+    """The disc-less sky's irradiance on level ground, (R, G, B)."""
+    return _interpolate(elevation, _SKY)
+
+
+def lamp(elevation):
+    """(strength, colour) of a sun lamp that lights like the sky's sun: colour's largest channel 1."""
+    rgb = disc_irradiance(elevation)
+    strength = float(rgb.max())
+    if strength <= 0.0:
+        return 0.0, (1.0, 1.0, 1.0)
+    return strength, tuple(float(c) for c in rgb / strength)
+
+
+def level_irradiance(elevation):
+    """(direct, sky) irradiance on level ground, each (R, G, B)."""
+    direct = disc_irradiance(elevation) * max(np.sin(float(elevation)), 0.0)
+    return direct, sky_irradiance(elevation)
+
+
+def exposure(elevation):
+    """The exposure (stops) at which level grey ground under this sun and sky reads as its own
+    albedo: its radiance is albedo x E / pi, so the exposure is log2(pi / E) in luminance."""
+    direct, sky = level_irradiance(elevation)
+    total = float((direct + sky) @ LUMINANCE)
+    return float(np.log2(np.pi / max(total, 1e-6)))
