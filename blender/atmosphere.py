@@ -16,7 +16,7 @@ from ..core import sun as sky_sun
 from ..node_groups import dust_field, dust_volume
 from ..node_groups import helper as h
 from . import ownership as own
-from . import units
+from . import sand, units
 
 # Bump when build_sky_nodes changes: a world built by an older version is rebuilt.
 WORLD_NODES_KEY = "sandscape_sky_nodes"
@@ -233,6 +233,7 @@ def apply(scene, settings):
     dust = {"scatter": settings.dust_density * units.metres_per_unit(scene),
             "anisotropy": settings.anisotropy, "field": field}
     box = ensure_volume(scene, coefficients, low, high, dust)
+    sand.set_wind(scene, settings.wind)  # one wind for the dust and the sand's ripples
     if box is not None and field is not None:
         # Ray marching: 1.8-5.8x faster than the default at equal error (bench/atmosphere.py).
         scene.cycles.volume_biased = True

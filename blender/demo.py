@@ -64,7 +64,7 @@ def build(context):
     presets.apply(scene, presets.PRESETS["PREVIEW"])
     terrain = dune_terrain(scene.collection)
     context.view_layer.objects.active = terrain
-    sand.apply(terrain, {**sand.default_glint_values(), **SAND})
+    sand.apply(terrain, {**sand.default_glint_values(), **SAND}, ripple_values=sand.default_ripples(scene))
     steps = scene.sandscape_footprints
     steps.terrain = terrain
     steps.walker, path = walker.ensure_walker(scene, terrain, *FRAMES)

@@ -134,7 +134,8 @@ def _dark_glints(scene):
     for obj in _renderable(scene):
         material = sand.find_sand_material(obj)
         node = sand.glint_node(material)
-        if node is None or material.name in seen or node.inputs["Strength"].default_value != 0:
+        strength = node.inputs.get("Strength") if node is not None else None  # emission glints only
+        if strength is None or material.name in seen or strength.default_value != 0:
             continue
         seen.add(material.name)
         tree = material.node_tree

@@ -1,31 +1,47 @@
-"""The Sandscape sand material: a rough sand-coloured base plus the glint emission, and the
-footprint displacement when prints are painted; the seeded glint-noise image.
+"""The Sandscape sand material: a look (PHYSICAL or JOURNEY), glints (LIT mirror facets or
+EMISSION sparkles) from object-space cells or an image, wind ripples, and the footprint
+displacement when prints are painted; the seeded glint-noise image.
 
 The material is ours when it carries MATERIAL_KEY = "sand"; a user's material, even one named
-like ours, is never looked at. Re-running updates our material in place. Inside it, group
-nodes are found by their group's key and the other nodes by their node names.
+like ours, is never looked at. Re-running updates our material in place; a change of look,
+glints, source or ripples rebuilds its tree and keeps the painted prints. Inside it, group nodes
+are found by their group's key and the other nodes by their node names.
 """
 
 import bpy
 import numpy as np
 
 from ..core import glints as glint_twin
-from ..node_groups import footprint_height, glint_shade, glints
+from ..node_groups import (
+    footprint_height,
+    glint_facet,
+    glint_shade,
+    glints,
+    journey_sand,
+    lit_glints,
+    physical_sand,
+    ripples,
+)
 from ..node_groups import helper as h
 from . import ownership as own
+from . import units
 
-SAND_COLOR = (0.62, 0.45, 0.27, 1.0)
-SAND_ROUGHNESS = 0.9
-GLINT_INPUTS = ("Threshold", "Glint Size", "Facing Power", "Color", "Strength", "Seed")
+SAND_COLOR = physical_sand.SAND_COLOR
+LOOKS = {"PHYSICAL": physical_sand, "JOURNEY": journey_sand}
+GLINT_INPUTS = ("Threshold", "Glint Size", "Facing Power", "Color", "Strength", "Roughness", "Seed")
+RIPPLE_INPUTS = ("Wavelength", "Amplitude", "Steep Fraction", "Lee Fraction")
+STRUCTURE_KEY = "sandscape_structure"  # look / glints / source / ripples of the tree built
 # Node names inside our material.
 PRINT_SPACE, PRINT_REGION = "Sandscape Print Space", "Sandscape Print Region"
 PRINT_MAP = "Sandscape Print Map"
 GLINT_NOISE, GLINTS_ADDED = "Sandscape Glint Noise", "Sandscape Sand + Glints"
+RIPPLE_DISPLACEMENT = "Sandscape Ripple Displacement"
 
 
 def default_glint_values():
-    """The glint group's own defaults, for a material made without the sand operator."""
-    return {name: glints.INPUTS[name][2] for name in GLINT_INPUTS}
+    """The glint groups' own defaults, for a material made without the sand operator."""
+    table = {**glints.INPUTS, **lit_glints.INPUTS}
+    return {name: table[name][2] for name in GLINT_INPUTS if name in table}
 
 
 def find_sand_material(obj):
@@ -44,8 +60,16 @@ def _group_node(material, group_names):
 
 
 def glint_node(material):
-    """The group node (procedural or image glints) inside our material, or None."""
-    return _group_node(material, (glints.NAME, glint_shade.NAME))
+    """The glint group node (lit or emission, procedural or image) inside our material, or None."""
+    return _group_node(material, (glints.NAME, glint_shade.NAME, lit_glints.NAME, glint_facet.NAME))
+
+
+def look_node(material):
+    return _group_node(material, (physical_sand.NAME, journey_sand.NAME))
+
+
+def ripple_node(material):
+    return _group_node(material, (ripples.NAME,))
 
 
 def footprint_node(material):
@@ -57,21 +81,41 @@ def image_node(material):
     node = glint_node(material)
     if node is None or "Noise" not in node.inputs or not node.inputs["Noise"].is_linked:
         return None
-    return node.inputs["Noise"].links[0].from_node
+    source = node.inputs["Noise"].links[0].from_node
+    return source if source.bl_idname == "ShaderNodeTexImage" else None
+
+
+def structure(material):
+    """(look, glints, source, ripples) of the tree as built, or None for a tree we did not build."""
+    text = material.get(STRUCTURE_KEY) if material is not None else None
+    if text:
+        look, glint_mode, source, rippled = text.split("/")
+        return look, glint_mode, source, rippled == "ripples"
+    if glint_node(material) is not None:  # built before looks existed: emission glints on Principled
+        return "PHYSICAL", "EMISSION", "IMAGE" if image_node(material) else "PROCEDURAL", False
+    return None
 
 
 def read_settings(material):
     """What the material holds now, in the sand operator's terms (its invoke() starts from it)."""
     node = glint_node(material)
-    if node is None:
+    built = structure(material)
+    if node is None or built is None:
         return {}
-    values = {name: node.inputs[name].default_value for name in GLINT_INPUTS if name in node.inputs}
-    image = image_node(material)
-    settings = {"source": "IMAGE" if image is not None else "PROCEDURAL"}
-    for name, value in values.items():
-        settings[name.lower().replace(" ", "_")] = tuple(value) if hasattr(value, "__len__") else value
+    look, glint_mode, source, rippled = built
+    settings = {"look": look, "glints": glint_mode, "source": source, "ripples": rippled}
+    for name in GLINT_INPUTS:
+        if name in node.inputs and not node.inputs[name].is_linked:
+            value = node.inputs[name].default_value
+            settings[name.lower().replace(" ", "_")] = tuple(value) if hasattr(value, "__len__") else value
     if "seed" in settings:
         settings["seed"] = int(round(settings["seed"]))
+    wave = ripple_node(material)
+    if wave is not None:
+        settings["ripple_wavelength"] = wave.inputs["Wavelength"].default_value
+        settings["ripple_amplitude"] = wave.inputs["Amplitude"].default_value
+        settings["ripple_displacement"] = own.node(material.node_tree, RIPPLE_DISPLACEMENT) is not None
+    image = image_node(material)
     if image is not None and image.image is not None:
         settings["image"] = image.image.name
     return settings
@@ -91,65 +135,148 @@ def assign_new_material(obj):
     return material
 
 
-def apply(obj, values, image=None):
+def apply(obj, values, image=None, look="PHYSICAL", glint_mode="LIT", ripple_values=None):
     """Our sand on the object, added or updated. Returns (material, whether it was added)."""
     material = find_sand_material(obj)
     added = material is None
     if added:
         material = assign_new_material(obj)
-    update_material(material, values, image)
+    update_material(material, values, image, look, glint_mode, ripple_values)
     for unused in [i for i in bpy.data.images if i.get(own.IMAGE_KEY) == own.GLINT_NOISE and i.users == 0]:
         bpy.data.images.remove(unused)  # ours, for another seed or size, and nothing shows it any more
     return material, added
 
 
-def update_material(material, values, image=None):
-    """Build or update the node tree. values: GLINT_INPUTS names -> values; image: glint source.
+def update_material(material, values, image=None, look="PHYSICAL", glint_mode="LIT", ripple_values=None):
+    """Build or update the node tree.
 
-    With an image, the noise comes from that image through the mesh UVs (one texel, one
-    grain) and Glint Size and Seed do not apply; without one, from object-space cells.
+    values: GLINT_INPUTS names -> values (those the glint group has are set); image: the glint
+    source (None: object-space cells); ripple_values: None for no ripples, else "Wind",
+    "Wavelength", "Amplitude" (and optionally the fractions and "Displacement": True for true
+    displacement on top of the shading).
     """
     # Glints are tiny highlights: sampling the emissive ground as a light gains nothing and
     # cost +113 % render time instead of +13 % (bench/glints.py). Found by BSDF rays they stay unbiased.
     material.cycles.emission_sampling = "NONE"
-    wanted = glint_shade.NAME if image is not None else glints.NAME
-    node = glint_node(material)
-    if node is None or node.node_tree.get(h.GROUP_KEY) != wanted:
+    wanted = (look, glint_mode, "IMAGE" if image is not None else "PROCEDURAL", ripple_values is not None)
+    if structure(material) != wanted:
         kept = _footprint_state(material)
-        node = _build_tree(material, image)
-        if kept is not None:  # switching the glint source keeps the painted footprints
+        _build_tree(material, image, look, glint_mode, ripple_values is not None)
+        material[STRUCTURE_KEY] = "/".join((*wanted[:3], "ripples" if wanted[3] else "flat"))
+        if kept is not None:  # a rebuilt tree keeps the painted footprints
             attach_footprints(material, *kept)
+    node = glint_node(material)
     if image is not None:
         image_node(material).image = image
     for name in GLINT_INPUTS:
-        if name in node.inputs and name in values:
+        if name in node.inputs and name in values and not node.inputs[name].is_linked:
             node.inputs[name].default_value = values[name]
+    if ripple_values is not None:
+        wave = ripple_node(material)
+        for name in ("Wind", *RIPPLE_INPUTS):
+            if name in ripple_values:
+                wave.inputs[name].default_value = ripple_values[name]
+        _ripple_displacement(material, bool(ripple_values.get("Displacement")))
     return node
 
 
-def _build_tree(material, image):
+def default_ripples(scene):
+    """Ripples as a new material gets them: the scene's wind, 12 cm apart, 4 mm high."""
+    return {"Wind": tuple(scene.sandscape_atmosphere.wind), "Wavelength": units.to_units(scene, 0.12),
+            "Amplitude": units.to_units(scene, 0.004)}
+
+
+def set_wind(scene, wind):
+    """The wind of every sand material in the scene's ripples (Add Atmosphere changed it)."""
+    done = set()
+    for obj in scene.objects:
+        material = find_sand_material(obj)
+        wave = ripple_node(material)
+        if wave is not None and material.name not in done:
+            wave.inputs["Wind"].default_value = tuple(wind)
+            done.add(material.name)
+    return len(done)
+
+
+def _build_tree(material, image, look, glint_mode, with_ripples):
     tree = material.node_tree
+    if tree.animation_data is not None:
+        tree.animation_data_clear()  # the footprint driver comes back with attach_footprints
     tree.nodes.clear()
     output = h.add_node(tree, "ShaderNodeOutputMaterial", name="Sandscape Output")
-    base = h.add_node(tree, "ShaderNodeBsdfPrincipled", name="Sandscape Sand BSDF", label="Sand",
-                      inputs={"Base Color": SAND_COLOR, "Roughness": SAND_ROUGHNESS})
+    normal = None
+    if with_ripples:
+        wave = h.add_node(tree, "ShaderNodeGroup", name="Sandscape Ripples", label="Ripples",
+                          node_tree=h.ensure_group(ripples))
+        normal = wave.outputs["Normal"]
+    surface = h.add_node(tree, "ShaderNodeGroup", name="Sandscape Look", label=look.title(),
+                         node_tree=h.ensure_group(LOOKS[look]))
+    if normal is not None:
+        h.link(tree, normal, surface.inputs["Normal"])
+    base = surface.outputs[0]
+    lit = glint_mode == "LIT"
     if image is None:
-        glint = h.add_node(tree, "ShaderNodeGroup", name="Sandscape Glints", node_tree=h.ensure_group(glints))
+        glint = h.add_node(tree, "ShaderNodeGroup", name="Sandscape Glints",
+                           node_tree=h.ensure_group(lit_glints if lit else glints))
     else:
         glint = h.add_node(tree, "ShaderNodeGroup", name="Sandscape Glints",
-                           node_tree=h.ensure_group(glint_shade))
+                           node_tree=h.ensure_group(glint_facet if lit else glint_shade))
         uv = h.add_node(tree, "ShaderNodeTexCoord", name="Sandscape Glint UV")
         texture = h.add_node(tree, "ShaderNodeTexImage", name=GLINT_NOISE, label="Glint Noise",
                              interpolation="Closest", extension="REPEAT", image=image)
         h.link(tree, uv.outputs["UV"], texture.inputs["Vector"])
         h.link(tree, texture.outputs["Color"], glint.inputs["Noise"])
-    glint.label = "Glints"
-    add = h.add_node(tree, "ShaderNodeAddShader", name=GLINTS_ADDED)
-    h.link(tree, base.outputs["BSDF"], add.inputs[0])
-    h.link(tree, glint.outputs["Emission"], add.inputs[1])
-    h.link(tree, add.outputs[0], output.inputs["Surface"])
+        if lit:  # a facet's tilt from the grain's own value: grains of one value lean alike
+            tilt = h.add_node(tree, "ShaderNodeTexWhiteNoise", name="Sandscape Glint Tilt",
+                              label="Glint Tilt", noise_dimensions="1D")
+            h.link(tree, texture.outputs["Color"], tilt.inputs["W"])
+            h.link(tree, tilt.outputs["Color"], glint.inputs["Tilt"])
+    glint.label = "Glitter" if look == "JOURNEY" else "Glints"
+    if lit:
+        h.link(tree, base, glint.inputs["Base"])
+        if normal is not None:
+            h.link(tree, normal, glint.inputs["Normal"])
+        h.link(tree, glint.outputs["Shader"], output.inputs["Surface"])
+    else:
+        add = h.add_node(tree, "ShaderNodeAddShader", name=GLINTS_ADDED)
+        h.link(tree, base, add.inputs[0])
+        h.link(tree, glint.outputs["Emission"], add.inputs[1])
+        h.link(tree, add.outputs[0], output.inputs["Surface"])
     h.arrange(tree, set_widths=False)
     return glint
+
+
+def _ripple_displacement(material, wanted):
+    """Ripples as true displacement too (where adaptive subdivision dices finely enough: the
+    footprint patch), added to the prints' displacement; or shading only."""
+    tree = material.node_tree
+    existing = own.node(tree, RIPPLE_DISPLACEMENT)
+    output = own.node(tree, "Sandscape Output")
+    prints = footprint_node(material)
+    if existing is not None and not wanted:
+        tree.nodes.remove(existing)
+        extra = own.node(tree, "Sandscape Prints + Ripples")
+        if extra is not None:
+            tree.nodes.remove(extra)
+        if prints is not None:
+            h.link(tree, prints.outputs["Displacement"], output.inputs["Displacement"])
+        return
+    if existing is None and wanted:
+        wave = ripple_node(material)
+        displace = h.add_node(tree, "ShaderNodeDisplacement", name=RIPPLE_DISPLACEMENT,
+                              label="Ripple Displacement", space="WORLD",
+                              inputs={"Midlevel": 0.0, "Scale": 1.0})
+        h.link(tree, wave.outputs["Height"], displace.inputs["Height"])
+        result = displace.outputs[0]
+        if prints is not None:
+            both = h.add_node(tree, "ShaderNodeVectorMath", name="Sandscape Prints + Ripples",
+                              operation="ADD")
+            h.link(tree, prints.outputs["Displacement"], both.inputs[0])
+            h.link(tree, result, both.inputs[1])
+            result = both.outputs[0]
+        h.link(tree, result, output.inputs["Displacement"])
+        material.displacement_method = "BOTH"
+        h.arrange(tree, set_widths=False)
 
 
 def _footprint_state(material):
@@ -192,6 +319,9 @@ def attach_footprints(material, image, space_object, values):
         driver = node.inputs["Frame"].driver_add("default_value").driver
         driver.type = "SCRIPTED"
         driver.expression = "frame"  # a simple expression: evaluated without Python auto-run
+        if own.node(tree, RIPPLE_DISPLACEMENT) is not None:  # prints and ripples displace together
+            _ripple_displacement(material, False)
+            _ripple_displacement(material, True)
         h.arrange(tree, set_widths=False)
     texture = node.inputs["Print Map"].links[0].from_node
     mapping = texture.inputs["Vector"].links[0].from_node

@@ -43,6 +43,21 @@ def _start(*keys):
     return keys, start, start.copy(), start.copy()
 
 
+def hash_uint(kx):
+    (kx,), a, b, c = _start(kx)
+    with np.errstate(over="ignore"):
+        a = a + kx
+        return _final(a, b, c)[2]
+
+
+def hash_uint2(kx, ky):
+    (kx, ky), a, b, c = _start(kx, ky)
+    with np.errstate(over="ignore"):
+        b = b + ky
+        a = a + kx
+        return _final(a, b, c)[2]
+
+
 def hash_uint3(kx, ky, kz):
     (kx, ky, kz), a, b, c = _start(kx, ky, kz)
     with np.errstate(over="ignore"):
@@ -83,3 +98,21 @@ def white_noise_4d(vector, w):
     v = float_bits(vector)
     wb = np.broadcast_to(float_bits(np.asarray(w, dtype=np.float32)), v.shape[:-1])
     return uint_to_unit(hash_uint4(v[..., 0], v[..., 1], v[..., 2], wb))
+
+
+def white_noise_1d_color(w):
+    """Color output of the White Noise Texture node in 1D mode: (hash(w), hash(w, 1), hash(w, 2))."""
+    wb = float_bits(np.asarray(w, dtype=np.float32))
+    one, two = float_bits(np.float32(1.0)), float_bits(np.float32(2.0))
+    return np.stack([uint_to_unit(hash_uint(wb)), uint_to_unit(hash_uint2(wb, one)),
+                     uint_to_unit(hash_uint2(wb, two))], axis=-1)
+
+
+def white_noise_4d_color(vector, w):
+    """Color output of the White Noise Texture node in 4D mode: the 4D hash of (x, y, z, w),
+    (z, x, w, y) and (w, z, y, x), as Cycles' hash_float4_to_color."""
+    v = float_bits(vector)
+    wb = np.broadcast_to(float_bits(np.asarray(w, dtype=np.float32)), v.shape[:-1])
+    x, y, z = v[..., 0], v[..., 1], v[..., 2]
+    return np.stack([uint_to_unit(hash_uint4(x, y, z, wb)), uint_to_unit(hash_uint4(z, x, wb, y)),
+                     uint_to_unit(hash_uint4(wb, z, y, x))], axis=-1)

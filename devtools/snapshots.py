@@ -37,6 +37,29 @@ def _value(value):
         return str(value)
 
 
+_MISSING = object()
+
+
+def _stock_inputs(tree, node):
+    """Input values of a new node of the same type, as Blender makes it (with the same settings
+    for nodes whose sockets depend on them, like Math's operation)."""
+    fresh = tree.nodes.new(node.bl_idname)
+    try:
+        for prop in fresh.bl_rna.properties:
+            if prop.type == "ENUM" and not prop.is_readonly and prop.identifier not in SKIP:
+                try:
+                    setattr(fresh, prop.identifier, getattr(node, prop.identifier))
+                except (TypeError, AttributeError):
+                    continue
+        if hasattr(node, "node_tree"):
+            fresh.node_tree = node.node_tree
+            return {}  # a group node: its inputs are the group's own, every one counts
+        return {s.name: _value(s.default_value) for s in fresh.inputs
+                if hasattr(s, "default_value") and s.enabled}
+    finally:
+        tree.nodes.remove(fresh)
+
+
 def serialize(tree):
     interface = []
     for item in tree.interface.items_tree:
@@ -58,8 +81,12 @@ def serialize(tree):
                 continue
             settings[prop.identifier] = _value(getattr(node, prop.identifier))
         # Sockets by name: identifiers of the same socket differ between versions ("A", "A_VEC3").
+        # Only the values the builder set: Blender's own defaults (and sockets one version has and
+        # the other not, like 5.2's Thin Wall) are not the builder's.
+        stock = _stock_inputs(tree, node)
         inputs = {socket.name: _value(socket.default_value) for socket in node.inputs
-                  if not socket.is_linked and hasattr(socket, "default_value") and socket.enabled}
+                  if not socket.is_linked and hasattr(socket, "default_value") and socket.enabled
+                  and stock.get(socket.name, _MISSING) != _value(socket.default_value)}
         nodes[node.name] = {"type": node.bl_idname, "label": node.label,
                             "frame": node.parent.name if node.parent else None,
                             "at": [round(v) for v in node.location_absolute], "settings": settings,

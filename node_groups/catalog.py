@@ -10,18 +10,30 @@ from . import (
     dust_volume,
     footprint_height,
     gated_blur,
+    glint_facet,
     glint_shade,
     glints,
     god_rays,
+    journey_sand,
+    lit_glints,
+    physical_sand,
     print_markers,
     region_cut,
+    ripples,
+    sand_normal,
 )
 
 GOD_RAYS = god_rays.Builder(god_rays.DEFAULT_SAMPLES)
 
 GROUPS = (
+    (physical_sand, "Sand"),
+    (journey_sand, "Sand"),
+    (lit_glints, "Sand"),
+    (glint_facet, "Sand"),
     (glints, "Sand"),
     (glint_shade, "Sand"),
+    (sand_normal, "Sand"),
+    (ripples, "Sand"),
     (footprint_height, "Footprints"),
     (dust_volume, "Atmosphere"),
     (dust_field, "Atmosphere"),

@@ -60,10 +60,18 @@ def insert_group_node(tree, builder, location=(0.0, 0.0)):
     return node
 
 
+SURFACE_NORMAL = "sandscape:surface-normal"  # a Normal input that falls back to the shading normal
+
+
 def add_input(tree, name, socket_type, description, default=None, min_value=None, max_value=None,
               subtype=None):
-    return _add_socket(tree, "INPUT", name, socket_type, description, default, min_value, max_value,
-                       subtype)
+    """An interface input. A vector Normal input shows no value field: unlinked, the group uses
+    the shading normal (normal_or_geometry), so a typed value would mean nothing."""
+    socket = _add_socket(tree, "INPUT", name, socket_type, description, default, min_value, max_value,
+                         subtype)
+    if subtype == SURFACE_NORMAL:
+        socket.hide_value = True
+    return socket
 
 
 def add_output(tree, name, socket_type, description):
@@ -74,7 +82,7 @@ def _add_socket(tree, in_out, name, socket_type, description, default=None, min_
                 max_value=None, subtype=None):
     socket = tree.interface.new_socket(name, in_out=in_out, socket_type=socket_type)
     socket.description = description
-    if subtype is not None:
+    if subtype is not None and subtype != SURFACE_NORMAL:
         socket.subtype = subtype
     if min_value is not None:
         socket.min_value = min_value
@@ -116,8 +124,41 @@ def math(tree, operation, a=None, b=None, location=(0, 0), label=None):
     return node
 
 
+def vector_math(tree, operation, a=None, b=None, label=None, **inputs):
+    """A Vector Math node whose first two inputs are sockets (linked) or values (defaults)."""
+    node = add_node(tree, "ShaderNodeVectorMath", label=label, operation=operation, inputs=inputs)
+    for index, value in enumerate((a, b)):
+        if value is None:
+            continue
+        if isinstance(value, bpy.types.NodeSocket):
+            tree.links.new(value, node.inputs[index])
+        else:
+            node.inputs[index].default_value = value
+    return node
+
+
+def normal_or_geometry(tree, normal):
+    """The Normal input if it was linked (not zero), else the shading normal: a group's unlinked
+    vector input is (0, 0, 0), and a zero normal would make the shaders meaningless.
+    Returns (the normal socket, the nodes made)."""
+    geometry = add_node(tree, "ShaderNodeNewGeometry")
+    length = vector_math(tree, "LENGTH", normal, label="|Normal|")
+    given = math(tree, "GREATER_THAN", length.outputs["Value"], 1e-6, label="Normal Given")
+    choose = add_node(tree, "ShaderNodeMix", label="Given or Surface Normal", data_type="VECTOR")
+    link(tree, given.outputs[0], socket(choose.inputs, "Factor"))
+    link(tree, geometry.outputs["Normal"], socket(choose.inputs, "A"))
+    link(tree, normal, socket(choose.inputs, "B"))
+    unit = vector_math(tree, "NORMALIZE", socket(choose.outputs, "Result"), label="Normal")
+    return unit.outputs["Vector"], (geometry, length, given, choose, unit)
+
+
 def link(tree, from_socket, to_socket):
     return tree.links.new(from_socket, to_socket)
+
+
+def socket(sockets, name):
+    """The enabled socket of that name (Mix and Compare nodes keep one per data type)."""
+    return next(s for s in sockets if s.name == name and s.enabled)
 
 
 def group_io(tree):
@@ -129,6 +170,7 @@ def group_io(tree):
 
 COLUMN_GAP, ROW_GAP, BAND_GAP = 80.0, 30.0, 90.0
 NODE_WIDTH, GROUP_NODE_WIDTH = 160.0, 180.0  # set, not left to defaults that vary between versions
+WIDE_NODES = {"ShaderNodeBsdfPrincipled": 240.0}
 HEADER, SOCKET_ROW, OPTIONS_ROW = 40.0, 24.0, 34.0
 PLAIN = {"NodeGroupInput", "NodeGroupOutput", "NodeReroute", "ShaderNodeGroup", "CompositorNodeGroup",
          "GeometryNodeGroup"}
@@ -170,8 +212,8 @@ def arrange(tree, set_widths=True):
     """
     nodes = [n for n in tree.nodes if n.bl_idname != "NodeFrame"]
     for node in nodes if set_widths else ():
-        wide = node.bl_idname.endswith("NodeGroup")
-        node.width = max(GROUP_NODE_WIDTH if wide else NODE_WIDTH, node.bl_width_min)
+        wide = GROUP_NODE_WIDTH if node.bl_idname.endswith("NodeGroup") else NODE_WIDTH
+        node.width = max(WIDE_NODES.get(node.bl_idname, wide), node.bl_width_min)
     before = {n.name: set() for n in nodes}
     for link in tree.links:
         if link.from_node.name in before and link.to_node.name in before:

@@ -1,55 +1,95 @@
 """The sand material operator: Add (or Update) Sand Material on the active mesh."""
 
 import bpy
-from bpy.props import EnumProperty, FloatProperty, FloatVectorProperty, IntProperty, StringProperty
+from bpy.props import (
+    BoolProperty,
+    EnumProperty,
+    FloatProperty,
+    FloatVectorProperty,
+    IntProperty,
+    StringProperty,
+)
 
 from ..blender import sand, units
-from ..node_groups import glints
+from ..node_groups import glints, lit_glints
 from .base import SandscapeOperator, active_mesh, editable_problem, value_problem
 
-# The operator mirrors the group's inputs: name, tooltip and default come from its socket table.
 # SKIP_SAVE: a value not passed is not the last run's but the material's (invoke) or the default.
-MIRROR = {name: {"name": name, "description": spec[1], "default": spec[2], "options": {"SKIP_SAVE"}}
-          for name, spec in glints.INPUTS.items()}
+SKIP = {"SKIP_SAVE"}
+# The operator mirrors the groups' inputs: name, tooltip and default come from their socket tables.
+MIRROR = {name: {"name": name, "description": spec[1], "default": spec[2], "options": SKIP}
+          for name, spec in {**glints.INPUTS, **lit_glints.INPUTS}.items()}
 GLINT_SIZE_METRES = glints.INPUTS["Glint Size"][2]
+RIPPLE_METRES = {"ripple_wavelength": 0.12, "ripple_amplitude": 0.004}
 
 
 class SANDSCAPE_OT_add_sand_material(SandscapeOperator, bpy.types.Operator):
-    """Put a Sandscape sand material with glints on the active mesh, or update the one it has"""
+    """Put a Sandscape sand material with glints and wind ripples on the active mesh, or update the one
+    it has"""
 
     bl_idname = "sandscape.add_sand_material"
     bl_label = "Add Sand Material"
     POLL = ((active_mesh, "Select a mesh: the sand material goes on the active object"),)
     LIMITS = {"threshold": (0.0, 1.0), "glint_size": (1e-7, 1e7), "facing_power": (0.0, 1e7),
-              "color": (0.0, 1e4), "strength": (0.0, 1e7), "seed": (0, 2**24), "image_resolution": (1, 16384)}
+              "color": (0.0, 1e4), "strength": (0.0, 1e7), "roughness": (0.0, 1.0), "seed": (0, 2**24),
+              "image_resolution": (1, 16384), "ripple_wavelength": (1e-4, 1e3),
+              "ripple_amplitude": (0.0, 10.0)}
 
-    # Soft limits only: out-of-range values from scripts are reported, not silently clamped.
+    look: EnumProperty(
+        name="Look", default="PHYSICAL", options=SKIP,
+        items=(("PHYSICAL", "Physical", "Sand as a physical surface: rough diffuse, quartz Fresnel, sheen "
+                "rim, grainy normals"),
+               ("JOURNEY", "Journey", "The sand of Journey (seed 004): diffuse contrast, rim, ocean "
+                "specular, glitter")))
+    glints: EnumProperty(
+        name="Glints", default="LIT", options=SKIP,
+        items=(("LIT", "Lit", "Mirror facets: a grain glints only where light reaches it and its facet "
+                "reflects it to the camera"),
+               ("EMISSION", "Emission", "Seed 000's sparkles: glints shine by themselves (stylised looks, "
+                "EEVEE)")))
     source: EnumProperty(
-        name="Glint Source",
+        name="Glint Source", options=SKIP,
         items=(("PROCEDURAL", "Procedural", "Seeded white noise on object-space cells of Glint Size"),
                ("IMAGE", "Image", "A noise image through the mesh UVs: one texel, one grain")),
-        default="PROCEDURAL", options={"SKIP_SAVE"})
+        default="PROCEDURAL")
     threshold: FloatProperty(**MIRROR["Threshold"], soft_min=0.0, soft_max=1.0, subtype="FACTOR")
     glint_size: FloatProperty(**MIRROR["Glint Size"], soft_min=1e-5, soft_max=1.0, subtype="DISTANCE",
                               unit="LENGTH", precision=4)
     facing_power: FloatProperty(**MIRROR["Facing Power"], soft_min=0.0, soft_max=256.0)
     color: FloatVectorProperty(**MIRROR["Color"], size=4, subtype="COLOR", soft_min=0.0, soft_max=1.0)
     strength: FloatProperty(**MIRROR["Strength"], soft_min=0.0, soft_max=1000.0)
+    roughness: FloatProperty(**MIRROR["Roughness"], soft_min=0.0, soft_max=1.0, subtype="FACTOR")
     seed: IntProperty(name="Seed", description="Another seed, another set of glinting grains",
-                      default=0, min=0, max=2 ** 24, options={"SKIP_SAVE"})
+                      default=0, min=0, max=2 ** 24, options=SKIP)
     image: StringProperty(
         name="Image", description="Image for the Image source; empty makes a seeded noise image",
-        options={"SKIP_SAVE"})
+        options=SKIP)
     image_resolution: IntProperty(
         name="Noise Resolution", description="Size of the generated noise image in texels",
-        default=1024, min=1, max=16384, options={"SKIP_SAVE"})
+        default=1024, min=1, max=16384, options=SKIP)
+    ripples: BoolProperty(name="Wind Ripples", default=True, options=SKIP,
+                          description="Ripples across the wind of the scene's atmosphere settings")
+    ripple_wavelength: FloatProperty(
+        name="Ripple Wavelength", default=RIPPLE_METRES["ripple_wavelength"], soft_min=0.02, soft_max=0.5,
+        subtype="DISTANCE", unit="LENGTH", options=SKIP,
+        description="Distance from crest to crest (sand ripples: 5 to 20 cm)")
+    ripple_amplitude: FloatProperty(
+        name="Ripple Amplitude", default=RIPPLE_METRES["ripple_amplitude"], soft_min=0.0, soft_max=0.05,
+        subtype="DISTANCE", unit="LENGTH", precision=4, options=SKIP,
+        description="Height of a crest above the mean")
+    ripple_displacement: BoolProperty(
+        name="Ripple Displacement", default=False, options=SKIP,
+        description="Also displace by the ripples (true geometry where the footprint patch dices finely); "
+        "off: shading only")
 
     def invoke(self, context, _event):
         """Start from the material the object has (the sidebar's Update button), else from the
         defaults in the scene's units; values a script passed are kept."""
         current = sand.read_settings(sand.find_sand_material(context.active_object))
-        if not current and not self.properties.is_property_set("glint_size"):
-            self.glint_size = units.to_units(context.scene, GLINT_SIZE_METRES)
+        if not current:
+            for name, metres in (("glint_size", GLINT_SIZE_METRES), *RIPPLE_METRES.items()):
+                if not self.properties.is_property_set(name):
+                    setattr(self, name, units.to_units(context.scene, metres))
         for name, value in current.items():
             if not self.properties.is_property_set(name):
                 setattr(self, name, value)
@@ -77,9 +117,15 @@ class SANDSCAPE_OT_add_sand_material(SandscapeOperator, bpy.types.Operator):
                      else sand.ensure_noise_image(self.image_resolution, self.seed))
         values = {"Threshold": self.threshold, "Glint Size": self.glint_size,
                   "Facing Power": self.facing_power, "Color": self.color, "Strength": self.strength,
-                  "Seed": float(self.seed)}
-        material, added = sand.apply(obj, values, image)
-        self.report({"INFO"}, f"{'Added' if added else 'Updated'} '{material.name}' on '{obj.name}'")
+                  "Roughness": self.roughness, "Seed": float(self.seed)}
+        waves = None
+        if self.ripples:
+            waves = {"Wind": tuple(context.scene.sandscape_atmosphere.wind),
+                     "Wavelength": self.ripple_wavelength, "Amplitude": self.ripple_amplitude,
+                     "Displacement": self.ripple_displacement}
+        material, added = sand.apply(obj, values, image, self.look, self.glints, waves)
+        look = f"{self.look.title()} sand, {self.glints.lower()} glints" + (", ripples" if waves else "")
+        self.report({"INFO"}, f"{'Added' if added else 'Updated'} '{material.name}' on '{obj.name}': {look}")
         return {"FINISHED"}
 
 

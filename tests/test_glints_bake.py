@@ -86,7 +86,8 @@ def test_unaligned_size_matches_away_from_cell_edges(glints_group, plane):
 def test_operator_material_emits_the_twin_glints(sandscape, plane):
     """The whole sand material: its EMIT bake is the glint colour (the BSDF does not emit)."""
     assert bpy.ops.sandscape.add_sand_material(
-        threshold=0.8, glint_size=1 / 16, facing_power=3.0, color=(1.0, 0.9, 0.7, 1.0),
+        glints="EMISSION", threshold=0.8, glint_size=1 / 16, facing_power=3.0,
+        color=(1.0, 0.9, 0.7, 1.0),
         strength=12.0, seed=4) == {"FINISHED"}
     baked = readback.bake_emit(plane, plane.active_material, RES)[..., :3]
     _, expected = twin.glints(plane_positions(), 1.0, 0.8, 1 / 16, 3.0, (1.0, 0.9, 0.7), 12.0, 4)
@@ -109,7 +110,7 @@ def test_image_source_bake_equals_twin(sandscape, plane):
     """Image source: a seeded 8-bit noise image, nearest texel through the UVs."""
     resolution, seed, threshold = 64, 17, 0.7
     assert bpy.ops.sandscape.add_sand_material(
-        source="IMAGE", image_resolution=resolution, seed=seed, threshold=threshold,
+        glints="EMISSION", source="IMAGE", image_resolution=resolution, seed=seed, threshold=threshold,
         facing_power=2.0, strength=1.0, color=(1.0, 1.0, 1.0, 1.0)) == {"FINISHED"}
     material = plane.active_material
     baked = readback.bake_emit(plane, material, RES)[..., 0]

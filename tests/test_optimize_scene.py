@@ -69,9 +69,8 @@ def test_switches_off_only_what_does_not_contribute(sandscape, wasteful_demo):
 def test_dark_glints_idle_rays_and_bounces(sandscape, wasteful_demo):
     scene, fog, slab, dicing = wasteful_demo
     terrain = scene.sandscape_footprints.terrain
-    material = terrain.active_material
-    sand = sandscape.blender.sand
-    sand.glint_node(material).inputs["Strength"].default_value = 0.0
+    bpy.context.view_layer.objects.active = terrain
+    bpy.ops.sandscape.add_sand_material(glints="EMISSION", strength=0.0)  # sparkles turned off
     scene.sandscape_atmosphere.sun_azimuth = math.radians(270.0)  # behind the walker and the camera
     scene.sandscape_atmosphere.density = scene.sandscape_atmosphere.dust_density = 0.0  # no dust box
     bpy.ops.sandscape.add_atmosphere()
@@ -80,7 +79,8 @@ def test_dark_glints_idle_rays_and_bounces(sandscape, wasteful_demo):
     assert any("glint strength 0" in line for line in lines)
     assert any("God rays removed" in line and "out of view" in line for line in lines)
     assert any("Volume bounces 2 -> 0" in line for line in lines)
+    material = terrain.active_material
     output = next(n for n in material.node_tree.nodes if n.bl_idname == "ShaderNodeOutputMaterial")
-    assert output.inputs["Surface"].links[0].from_node.bl_idname == "ShaderNodeBsdfPrincipled"
+    assert output.inputs["Surface"].links[0].from_node == sandscape.blender.sand.look_node(material)
     assert sandscape.blender.post.rays_node(scene.compositing_node_group) is None
     assert scene.cycles.volume_bounces == 0

@@ -15,13 +15,14 @@ def ours(datablocks, key):
 def test_rerun_updates_instead_of_duplicating(sandscape):
     plane = readback.uv_plane()
     bpy.ops.sandscape.add_sand_material(threshold=0.9)
-    bpy.ops.sandscape.add_sand_material(threshold=0.5, strength=4.0)
+    bpy.ops.sandscape.add_sand_material(threshold=0.5, roughness=0.2)
     assert len(ours(bpy.data.materials, "sandscape_material")) == 1
     assert len(plane.material_slots) == 1
-    assert len(ours(bpy.data.node_groups, "sandscape_group")) == 2  # glints + shade
+    # physical sand + its sand normal, lit glints + their facet, ripples
+    assert len(ours(bpy.data.node_groups, "sandscape_group")) == 5
     node = sandscape.blender.sand.glint_node(plane.active_material)
     assert node.inputs["Threshold"].default_value == pytest.approx(0.5)
-    assert node.inputs["Strength"].default_value == pytest.approx(4.0)
+    assert node.inputs["Roughness"].default_value == pytest.approx(0.2)
     assert plane.active_material.cycles.emission_sampling == "NONE"  # glints light nothing else
     # Switching source rebuilds our material in place, still one of everything.
     bpy.ops.sandscape.add_sand_material(source="IMAGE", image_resolution=16)
@@ -30,6 +31,11 @@ def test_rerun_updates_instead_of_duplicating(sandscape):
     assert len(ours(bpy.data.images, "sandscape_image")) == 1
     bpy.ops.sandscape.add_sand_material(source="PROCEDURAL")
     assert sandscape.blender.sand.image_node(plane.active_material) is None
+    # Another look and emission glints: the same material, rebuilt, one of everything again.
+    bpy.ops.sandscape.add_sand_material(look="JOURNEY", glints="EMISSION", ripples=False)
+    assert len(ours(bpy.data.materials, "sandscape_material")) == 1
+    assert sandscape.blender.sand.structure(plane.active_material) == ("JOURNEY", "EMISSION", "PROCEDURAL",
+                                                                       False)
 
 
 def test_users_look_alike_data_is_never_touched(sandscape):
@@ -52,7 +58,7 @@ def test_users_look_alike_data_is_never_touched(sandscape):
 def test_outdated_group_is_rebuilt_and_users_move_over(sandscape):
     helper, glints = sandscape.node_groups.helper, sandscape.node_groups.glints
     plane = readback.uv_plane()
-    bpy.ops.sandscape.add_sand_material()
+    bpy.ops.sandscape.add_sand_material(glints="EMISSION")
     old = helper.find_group(glints.NAME)
     old[helper.VERSION_KEY] = glints.VERSION - 1
     old_pointer = old.as_pointer()

@@ -70,8 +70,13 @@ def test_panel_offers_add_then_shows_live_inputs(sandscape):
     bpy.ops.sandscape.add_sand_material(threshold=0.6)
     calls = draw_panel()
     assert ("operator", "sandscape.add_sand_material", "Update Sand Material") in calls
-    props = {c[3]: c[1] for c in calls if c[0] == "prop"}
-    assert list(props) == ["Threshold", "Glint Size", "Facing Power", "Color", "Strength", "Seed"]
+    props = [(c[3], c[1]) for c in calls if c[0] == "prop"]
+    names = [name for name, _ in props]
+    # The glints, then the look, then the ripples: every input the artist can tune, none linked.
+    assert names[:6] == ["Threshold", "Glint Size", "Facing Power", "Color", "Roughness", "Seed"]
+    assert {"Diffuse Roughness", "IOR", "Sheen", "Wavelength", "Amplitude", "Steep Fraction"} <= set(names)
+    assert "Normal" not in names and "Base" not in names
+    props = dict(props[:6])
     # The panel edits the material's own node sockets: live, no copy to keep in sync.
     node = sandscape.blender.sand.glint_node(bpy.context.active_object.active_material)
     assert props["Threshold"] == node.inputs["Threshold"]
@@ -121,11 +126,15 @@ def test_every_operator_polls_through_the_shared_mixin(sandscape):
         assert cls.__doc__ and cls.bl_options == {"REGISTER", "UNDO"}, name
 
 
-@pytest.mark.parametrize("source, edits", [
-    ("PROCEDURAL", {"Strength": 60.0, "Seed": 7.0}), ("IMAGE", {"Strength": 60.0, "Threshold": 0.5})])
-def test_update_sand_material_starts_from_the_material(sandscape, source, edits):
+@pytest.mark.parametrize("glints, source, edits", [
+    ("EMISSION", "PROCEDURAL", {"Strength": 60.0, "Seed": 7.0}),
+    ("EMISSION", "IMAGE", {"Strength": 60.0, "Threshold": 0.5}),
+    ("LIT", "PROCEDURAL", {"Roughness": 0.2, "Seed": 7.0}),
+])
+def test_update_sand_material_starts_from_the_material(sandscape, glints, source, edits):
     plane = readback.uv_plane()
-    bpy.ops.sandscape.add_sand_material(source=source, image_resolution=8, strength=30.0, seed=0)
+    bpy.ops.sandscape.add_sand_material(look="JOURNEY", glints=glints, source=source, image_resolution=8,
+                                        strength=30.0, seed=0)
     node = sandscape.blender.sand.glint_node(plane.active_material)
     for name, value in edits.items():  # edited in the sidebar
         node.inputs[name].default_value = value
@@ -136,6 +145,7 @@ def test_update_sand_material_starts_from_the_material(sandscape, source, edits)
         assert node.inputs[name].default_value == pytest.approx(value), name
     image = sandscape.blender.sand.image_node(plane.active_material)
     assert (image is not None) == (source == "IMAGE")  # the source as it was
+    assert sandscape.blender.sand.structure(plane.active_material)[:2] == ("JOURNEY", glints)  # the look
 
 
 def test_shift_a_offers_sandscape(sandscape):
@@ -148,7 +158,9 @@ def test_shift_a_offers_sandscape(sandscape):
 
 @pytest.mark.parametrize("tree_type, expected", [
     ("ShaderNodeTree", {"Sandscape Glints", "Sandscape Glint Shade", "Sandscape Footprint Height",
-                        "Sandscape Dust Volume", "Sandscape Dust Field"}),
+                        "Sandscape Dust Volume", "Sandscape Dust Field", "Sandscape Physical Sand",
+                        "Sandscape Journey Sand", "Sandscape Lit Glints", "Sandscape Glint Facet",
+                        "Sandscape Sand Normal", "Sandscape Ripples"}),
     ("CompositorNodeTree", {"Sandscape Gated Blur", "Sandscape God Rays 32"}),
     ("GeometryNodeTree", set()),
 ])

@@ -42,11 +42,18 @@ class SANDSCAPE_PT_sand(SandscapeSubPanel, bpy.types.Panel):
             if obj is not None and obj.type == "MESH":
                 layout.label(text="No Sandscape material on this object")
             return
-        layout.label(text=material.name, icon="MATERIAL")
-        column = layout.column(align=True)
-        for socket in node.inputs:
-            if not socket.is_linked and hasattr(socket, "default_value"):
-                column.prop(socket, "default_value", text=socket.name)
+        built = sand.structure(material)
+        look = f"{built[0].title()} look, {built[1].lower()} glints" if built else ""
+        layout.label(text=f"{material.name}: {look}", icon="MATERIAL")
+        # The material's own node sockets: edits here are the material, no copy to keep in sync.
+        for part in (node, sand.look_node(material), sand.ripple_node(material)):
+            if part is None:
+                continue
+            layout.label(text=part.label or part.node_tree.name)
+            column = layout.column(align=True)
+            for socket in part.inputs:
+                if not socket.is_linked and hasattr(socket, "default_value") and not socket.hide_value:
+                    column.prop(socket, "default_value", text=socket.name)
         image = sand.image_node(material)
         if image is not None:
             layout.template_ID(image, "image", open="image.open")

@@ -1,0 +1,137 @@
+"""Numpy twins of the sand looks' node groups, in float32 like Cycles where it matters.
+
+glint_facets        <-> "Sandscape Glint Facet" / "Sandscape Lit Glints": which grains can glint
+                        and which way each grain's mirror facet faces
+sand_normal         <-> "Sandscape Sand Normal": the surface normal nudged towards a random
+                        direction per grain (Journey's sand normal, an nlerp)
+journey_diffuse     <-> the Diffuse Contrast part of "Sandscape Journey Sand": Journey's
+                        saturate(4 N.L) on a normal whose vertical part is squashed, as the Toon
+                        BSDF Cycles renders it
+ocean_roughness     <-> the Ocean Specular part: a Blinn-Phong exponent as Beckmann roughness
+rim                 <-> the Rim part: (1 - N.V)^power x strength
+ripples             <-> "Sandscape Ripples": wind ripples' height and shading normal
+"""
+
+import numpy as np
+
+from .glints import F32, _safe_divide
+from .noise_hash import white_noise_4d, white_noise_4d_color
+
+MIN_FACET_COS = 0.15  # a facet tilts at most acos(0.15) = 81 degrees, whatever the power
+TOON_SIZE, TOON_SMOOTH = 0.839, 0.161  # acos(0.25) and the rest of a right angle, over pi / 2
+SQUASH = 0.3  # Journey's factor on the normal's vertical component
+REPOSE = np.radians(35.0)  # the slope at which ripples keep their Steep Fraction
+
+
+def _unit(v):
+    v = np.asarray(v, dtype=np.float64)
+    length = np.linalg.norm(v, axis=-1, keepdims=True)
+    return v / np.where(length > 0, length, 1.0)
+
+
+def facet_spread(power):
+    """tan of the angle at which (N.V)^power falls to 1/2: how far a facet may tilt.
+
+    The emission glints kept to where (N.V)^power was large; lit glints let the facets tilt up
+    to that half angle instead, so Facing Power means the same: higher, fewer directions glint.
+    """
+    power = max(float(power), 1e-6)
+    c = max(0.5 ** (1.0 / power), MIN_FACET_COS)
+    return float(np.sqrt(1.0 - c * c) / c)
+
+
+def glint_cells(position, size, seed):
+    """Per object-space cell: the grain's noise (can it glint?) and its tilt (a colour, 0..1)."""
+    cell = np.floor(_safe_divide(position, size) + F32(0.5)).astype(F32)
+    return white_noise_4d(cell, F32(seed)), white_noise_4d_color(cell, F32(seed))
+
+
+def glint_facets(noise, tilt, normal, threshold, power):
+    """(mask, facet normal): mask 1 where a grain can glint; its facet is the surface normal
+    tilted by facet_spread(power) x (2 tilt - 1), renormalised."""
+    mask = (np.asarray(noise, F32) > F32(threshold)).astype(F32)
+    facet = _unit(np.asarray(normal, np.float64) + facet_spread(power) * (2.0 * np.asarray(tilt) - 1.0))
+    return mask, facet
+
+
+def sand_normal(normal, grain, strength):
+    """nlerp(N, G, strength), G the grain's random direction (2 grain - 1, turned to N's side)."""
+    normal = np.asarray(normal, np.float64)
+    g = 2.0 * np.asarray(grain, np.float64) - 1.0
+    g = np.where((np.sum(g * normal, axis=-1, keepdims=True) < 0), -g, g)
+    return _unit((1.0 - strength) * normal + strength * _unit(g))
+
+
+def toon_intensity(angle, size=TOON_SIZE, smooth=TOON_SMOOTH):
+    """Cycles' Toon BSDF: 1 within size x 90 degrees of the light, falling linearly to 0 over
+    smooth x 90 degrees."""
+    full, soft = size * np.pi / 2, smooth * np.pi / 2
+    angle = np.asarray(angle, np.float64)
+    ramp = 1.0 - (angle - full) / soft if soft > 0 else np.zeros_like(angle)
+    return np.where(angle < full, 1.0, np.where(angle < full + soft, ramp, 0.0))
+
+
+def journey_diffuse(normal, light, size=TOON_SIZE, smooth=TOON_SMOOTH, squash=SQUASH):
+    """Radiance per unit of sun irradiance and albedo: the Toon BSDF on the squashed normal.
+
+    Cycles' Toon BSDF returns intensity x pdf with no cosine, the pdf being uniform over the cone
+    of size + smooth (a hemisphere here): 1 / (2 pi (1 - cos(size + smooth)))."""
+    squashed = _unit(np.asarray(normal, np.float64) * np.array([1.0, 1.0, squash]))
+    cosine = np.clip(np.sum(squashed * np.asarray(light, np.float64), axis=-1), 0.0, 1.0)
+    cone = min((size + smooth) * np.pi / 2, np.pi / 2)
+    return toon_intensity(np.arccos(cosine), size, smooth) / (2 * np.pi * (1.0 - np.cos(cone)))
+
+
+def ocean_roughness(exponent):
+    """Beckmann roughness (Blender's, the square root of alpha) for a Blinn-Phong exponent:
+    alpha^2 = 2 / (p + 2), the classic match of the two lobes."""
+    return (2.0 / (np.asarray(exponent, np.float64) + 2.0)) ** 0.25
+
+
+def blinn_phong_half_width(exponent):
+    """Angle between N and H at which (N.H)^p falls to half: the width of a Blinn-Phong highlight."""
+    return np.arccos(0.5 ** (1.0 / np.asarray(exponent, np.float64)))
+
+
+def rim(n_dot_v, power, strength):
+    return strength * (1.0 - np.clip(n_dot_v, 0.0, 1.0)) ** power
+
+
+def _smoothstep(edge0, edge1, x):
+    t = np.clip((np.asarray(x, np.float64) - edge0) / (edge1 - edge0), 0.0, 1.0)
+    return t * t * (3.0 - 2.0 * t)
+
+
+def ripple_weight(normal, wind, steep_fraction, lee_fraction):
+    """How much ripple a surface keeps: Steep Fraction at the 35 degree angle of repose (less in
+    between), and less again on slopes turned away from the wind, down to Lee Fraction."""
+    normal = _unit(normal)
+    direction = _wind_direction(wind)
+    slope = np.arccos(np.clip(np.abs(normal[..., 2]), 0.0, 1.0))
+    steep = 1.0 + (steep_fraction - 1.0) * _smoothstep(0.0, REPOSE, slope)
+    downwind = normal[..., 0] * direction[0] + normal[..., 1] * direction[1]
+    lee = 1.0 + (lee_fraction - 1.0) * _smoothstep(0.0, np.sin(REPOSE), downwind)
+    return steep * lee
+
+
+def _wind_direction(wind):
+    w = np.array([wind[0], wind[1]], dtype=np.float64)
+    length = np.hypot(*w)
+    return w / length if length > 1e-9 else np.array([1.0, 0.0])
+
+
+def ripples(position, normal, wind, wavelength, amplitude, steep_fraction=0.2, lee_fraction=0.3):
+    """(height, normal) of the ripples at world positions (..., 3) with world normals: crests
+    across the wind, height = amplitude x weight x sin(2 pi (p . wind) / wavelength); the normal
+    tilts by the height's gradient along the wind."""
+    position = np.asarray(position, np.float64)
+    normal = _unit(normal)
+    direction = _wind_direction(wind)
+    phase = 2 * np.pi * (position[..., 0] * direction[0] + position[..., 1] * direction[1]) / wavelength
+    weight = ripple_weight(normal, wind, steep_fraction, lee_fraction)
+    height = amplitude * weight * np.sin(phase)
+    slope = amplitude * weight * np.cos(phase) * 2 * np.pi / wavelength
+    gradient = np.zeros(position.shape)
+    gradient[..., 0], gradient[..., 1] = slope * direction[0], slope * direction[1]
+    along = np.sum(gradient * normal, axis=-1, keepdims=True)
+    return height, _unit(normal - (gradient - along * normal))

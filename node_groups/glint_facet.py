@@ -1,0 +1,91 @@
+"""Sandscape Glint Facet: a glinting grain as a small mirror, lit by real light.
+
+A grain whose Noise exceeds Threshold is a mirror facet (a sharp Glossy BSDF) turned from the
+surface normal by a random Tilt, at most as far as Facing Power allows: the facet glints only
+where a light reaches it and its mirror sends that light to the camera, so shadows, the sun's
+colour and its height apply by construction. Other grains show the Base shader.
+Twin: core.sand.glint_facets (mask and facet normal).
+"""
+
+from ..core import sand
+from . import helper as h
+
+NAME = "Sandscape Glint Facet"
+VERSION = 1
+TREE_TYPE = "ShaderNodeTree"
+DESCRIPTION = ("A glinting grain as a mirror facet: Noise above Threshold shows a sharp glossy facet "
+               "tilted by Tilt within the spread Facing Power allows; other grains show Base")
+
+INPUTS = {  # name -> (type, description, default, min, max, subtype); append only
+    "Base": ("NodeSocketShader", "The sand between the glinting grains", None, None, None, None),
+    "Noise": ("NodeSocketFloat", "Per-grain random value in 0..1: above Threshold the grain is a facet",
+              0.0, 0.0, 1.0, None),
+    "Tilt": ("NodeSocketColor", "Per-grain random colour in 0..1: which way the facet leans",
+             (0.5, 0.5, 0.5, 1.0), None, None, None),
+    "Threshold": ("NodeSocketFloat", "Grains whose noise exceeds this can glint: 0 all, 1 none; about "
+                  "(1 - threshold) of them", 0.97, 0.0, 1.0, "FACTOR"),
+    "Facing Power": ("NodeSocketFloat", "Higher keeps facets near the surface normal (fewer directions "
+                     "glint); the facets tilt up to the angle where (N.V)^power is 1/2",
+                     8.0, 0.0, None, None),
+    "Color": ("NodeSocketColor", "Reflectance of a facet", (1.0, 0.95, 0.85, 1.0), None, None, None),
+    "Roughness": ("NodeSocketFloat", "Roughness of a facet's mirror: 0 images the sun disc sharply",
+                  0.05, 0.0, 1.0, "FACTOR"),
+    "Normal": ("NodeSocketVector", "Surface normal the facets lean from (unlinked: the shading normal)",
+               (0.0, 0.0, 0.0), None, None, h.SURFACE_NORMAL),
+}
+OUTPUTS = {
+    "Shader": ("NodeSocketShader", "Base, with glinting grains as mirror facets"),
+    "Mask": ("NodeSocketFloat", "1 on grains that can glint, 0 elsewhere"),
+    "Facet Normal": ("NodeSocketVector", "The facet's normal (the surface normal on other grains too)"),
+}
+
+
+def add_sockets(tree, names, inputs=INPUTS):
+    for name in names:
+        h.add_input(tree, name, *inputs[name])
+    for name, (socket_type, description) in OUTPUTS.items():
+        h.add_output(tree, name, socket_type, description)
+
+
+def build(tree):
+    tree.description = DESCRIPTION
+    add_sockets(tree, INPUTS)
+    group_in, group_out = h.group_io(tree)
+    inputs = group_in.outputs
+    normal, normal_nodes = h.normal_or_geometry(tree, inputs["Normal"])
+
+    lit = h.math(tree, "GREATER_THAN", inputs["Noise"], inputs["Threshold"], label="Can Glint")
+    # Spread: tan of the half-power angle, cos = 0.5^(1/power), at least MIN_FACET_COS.
+    power = h.math(tree, "MAXIMUM", inputs["Facing Power"], 1e-6, label="Power > 0")
+    inverse = h.math(tree, "DIVIDE", 1.0, power.outputs[0], label="1 / Power")
+    half_cos = h.math(tree, "POWER", 0.5, inverse.outputs[0], label="cos at Half Power")
+    cosine = h.math(tree, "MAXIMUM", half_cos.outputs[0], sand.MIN_FACET_COS, label="cos ≥ Limit")
+    squared = h.math(tree, "MULTIPLY", cosine.outputs[0], cosine.outputs[0], label="cos²")
+    sine_sq = h.math(tree, "SUBTRACT", 1.0, squared.outputs[0], label="sin²")
+    sine = h.math(tree, "SQRT", sine_sq.outputs[0], label="sin")
+    spread = h.math(tree, "DIVIDE", sine.outputs[0], cosine.outputs[0], label="Spread = tan")
+    centred = h.vector_math(tree, "MULTIPLY_ADD", inputs["Tilt"], (2.0, 2.0, 2.0), label="2 Tilt − 1")
+    centred.inputs[2].default_value = (-1.0, -1.0, -1.0)
+    lean = h.vector_math(tree, "SCALE", centred.outputs[0], label="× Spread")
+    h.link(tree, spread.outputs[0], lean.inputs["Scale"])
+    tilted = h.vector_math(tree, "ADD", normal, lean.outputs[0], label="Normal + Lean")
+    facet = h.vector_math(tree, "NORMALIZE", tilted.outputs[0], label="Facet Normal")
+
+    mirror = h.add_node(tree, "ShaderNodeBsdfGlossy", label="Facet Mirror", distribution="GGX")
+    h.link(tree, inputs["Color"], mirror.inputs["Color"])
+    h.link(tree, inputs["Roughness"], mirror.inputs["Roughness"])
+    h.link(tree, facet.outputs[0], mirror.inputs["Normal"])
+    mix = h.add_node(tree, "ShaderNodeMixShader", label="Base or Facet")
+    h.link(tree, lit.outputs[0], mix.inputs["Fac"])
+    h.link(tree, inputs["Base"], mix.inputs[1])
+    h.link(tree, mirror.outputs[0], mix.inputs[2])
+
+    h.link(tree, mix.outputs[0], group_out.inputs["Shader"])
+    h.link(tree, lit.outputs[0], group_out.inputs["Mask"])
+    h.link(tree, facet.outputs[0], group_out.inputs["Facet Normal"])
+    h.frame(tree, "Surface Normal", normal_nodes)
+    h.frame(tree, "Which Grains", (lit,))
+    h.frame(tree, "How Far a Facet Leans", (power, inverse, half_cos, cosine, squared, sine_sq, sine, spread))
+    h.frame(tree, "Facet", (centred, lean, tilted, facet, mirror))
+    h.frame(tree, "Mirror on the Grain", (mix,))
+    h.arrange(tree)

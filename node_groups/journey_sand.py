@@ -1,0 +1,123 @@
+"""Sandscape Journey Sand: the sand model of Journey (seed 004, after John Edwards' GDC talk),
+as Cycles closures, each term a framed part to see and tune:
+
+- Sand Normal: the normal nudged per grain (Sandscape Sand Normal), which every term uses.
+- Diffuse Contrast: Journey's saturate(4 N.L) on a normal whose vertical component is scaled
+  by 0.3. A Toon BSDF does it: full light within acos(0.25) = 75.5 degrees (size 0.839 of a
+  right angle) falling to none at 90 (smooth 0.161), on the squashed, renormalised normal.
+- Rim: light reflected at grazing angles, a glossy lobe weighted by (1 - N.V)^power, with its
+  own colour and strength.
+- Ocean Specular: a Blinn-Phong lobe of exponent p, as Beckmann roughness (2 / (p + 2))^1/4
+  (the two lobes' widths agree within 7 % at p = 16 and 2 % above 64).
+- Glitter: the lit glints (Sandscape Lit Glints), added by the material on top.
+
+The talk adds the diffuse term to saturate(max(rim, ocean)). Closures cannot take a maximum of
+each other's light, so they are added: the rim lives at grazing angles and the ocean specular
+around the mirror direction, and where both are small their sum stays near the maximum.
+Twins: core.sand.journey_diffuse, ocean_roughness, rim, sand_normal.
+"""
+
+from ..core import sand
+from . import helper as h
+from . import sand_normal
+
+NAME = "Sandscape Journey Sand"
+VERSION = 1
+TREE_TYPE = "ShaderNodeTree"
+DESCRIPTION = ("Journey's sand (seed 004): diffuse contrast, sand normal, rim, ocean specular as Cycles "
+               "closures; add the lit glints for the glitter")
+SAND_COLOR = (0.62, 0.45, 0.27, 1.0)
+
+
+def build(tree):
+    tree.description = DESCRIPTION
+    h.add_input(tree, "Color", "NodeSocketColor", "Albedo of the sand", SAND_COLOR)
+    h.add_input(tree, "Grain Size", "NodeSocketFloat", "Edge of a grain in the object's own units", 0.002,
+                0.0, None, "DISTANCE")
+    h.add_input(tree, "Grain Strength", "NodeSocketFloat", "Sand normal: how far the grains turn the "
+                "normal", 0.15, 0.0, 1.0, "FACTOR")
+    h.add_input(tree, "Seed", "NodeSocketFloat", "Another seed gives other grains", 0.0)
+    h.add_input(tree, "Normal", "NodeSocketVector", "Surface normal, e.g. the ripples' (unlinked: the "
+                "shading normal)", (0.0, 0.0, 0.0), subtype=h.SURFACE_NORMAL)
+    h.add_input(tree, "Diffuse Size", "NodeSocketFloat", "Diffuse contrast: fully lit within this share "
+                "of a right angle from the light (0.839: N.L above 0.25)", sand.TOON_SIZE, 0.0, 1.0, "FACTOR")
+    h.add_input(tree, "Diffuse Smooth", "NodeSocketFloat", "Diffuse contrast: share of a right angle over "
+                "which the light fades out", sand.TOON_SMOOTH, 0.0, 1.0, "FACTOR")
+    h.add_input(tree, "Squash", "NodeSocketFloat", "Diffuse contrast: factor on the normal's vertical "
+                "component (Journey: 0.3)", sand.SQUASH, 0.0, 1.0, "FACTOR")
+    h.add_input(tree, "Rim Color", "NodeSocketColor", "Rim: colour of the grazing reflection",
+                (1.0, 0.92, 0.8, 1.0))
+    h.add_input(tree, "Rim Power", "NodeSocketFloat", "Rim: exponent on 1 - N.V; higher keeps it to the "
+                "silhouettes", 4.0, 0.0, None)
+    h.add_input(tree, "Rim Strength", "NodeSocketFloat", "Rim: scale of the grazing reflection", 0.5, 0.0,
+                None)
+    h.add_input(tree, "Ocean Color", "NodeSocketColor", "Ocean specular: colour of the highlight",
+                (1.0, 0.95, 0.9, 1.0))
+    h.add_input(tree, "Ocean Exponent", "NodeSocketFloat", "Ocean specular: Blinn-Phong exponent (higher, "
+                "narrower)", 64.0, 0.0, None)
+    h.add_input(tree, "Ocean Strength", "NodeSocketFloat", "Ocean specular: scale of the highlight", 0.4,
+                0.0, None)
+    h.add_output(tree, "Shader", "NodeSocketShader", "Diffuse contrast + rim + ocean specular")
+    h.add_output(tree, "Normal", "NodeSocketVector", "The sand normal every term uses")
+    h.add_output(tree, "Rim Weight", "NodeSocketFloat", "(1 - N.V)^power x strength, for inspection")
+    h.add_output(tree, "Ocean Roughness", "NodeSocketFloat", "The Beckmann roughness of the ocean lobe")
+    group_in, group_out = h.group_io(tree)
+    inputs = group_in.outputs
+
+    grains = h.add_node(tree, "ShaderNodeGroup", node_tree=h.ensure_group(sand_normal), label="Sand Normal")
+    for name, to in (("Normal", "Normal"), ("Grain Size", "Grain Size"), ("Grain Strength", "Strength"),
+                     ("Seed", "Seed")):
+        h.link(tree, inputs[name], grains.inputs[to])
+    normal = grains.outputs["Normal"]
+
+    split = h.add_node(tree, "ShaderNodeSeparateXYZ")
+    h.link(tree, normal, split.inputs[0])
+    low = h.math(tree, "MULTIPLY", split.outputs["Z"], inputs["Squash"], label="Z × Squash")
+    squashed = h.add_node(tree, "ShaderNodeCombineXYZ")
+    h.link(tree, split.outputs["X"], squashed.inputs["X"])
+    h.link(tree, split.outputs["Y"], squashed.inputs["Y"])
+    h.link(tree, low.outputs[0], squashed.inputs["Z"])
+    contrast_normal = h.vector_math(tree, "NORMALIZE", squashed.outputs[0], label="Squashed Normal")
+    toon = h.add_node(tree, "ShaderNodeBsdfToon", label="Diffuse Contrast", component="DIFFUSE")
+    h.link(tree, inputs["Color"], toon.inputs["Color"])
+    h.link(tree, inputs["Diffuse Size"], toon.inputs["Size"])
+    h.link(tree, inputs["Diffuse Smooth"], toon.inputs["Smooth"])
+    h.link(tree, contrast_normal.outputs[0], toon.inputs["Normal"])
+
+    facing = h.add_node(tree, "ShaderNodeLayerWeight", inputs={"Blend": 0.5})
+    h.link(tree, normal, facing.inputs["Normal"])
+    power = h.math(tree, "MAXIMUM", inputs["Rim Power"], 0.0, label="Power ≥ 0")
+    falloff = h.math(tree, "POWER", facing.outputs["Facing"], power.outputs[0], label="(1 − N·V)^Power")
+    weight = h.math(tree, "MULTIPLY", falloff.outputs[0], inputs["Rim Strength"], label="Rim Weight")
+    tint = h.vector_math(tree, "SCALE", inputs["Rim Color"], label="Rim Colour × Weight")
+    h.link(tree, weight.outputs[0], tint.inputs["Scale"])
+    rim = h.add_node(tree, "ShaderNodeBsdfGlossy", label="Rim", distribution="GGX", inputs={"Roughness": 0.5})
+    h.link(tree, tint.outputs[0], rim.inputs["Color"])
+    h.link(tree, normal, rim.inputs["Normal"])
+
+    plus_two = h.math(tree, "ADD", inputs["Ocean Exponent"], 2.0, label="p + 2")
+    ratio = h.math(tree, "DIVIDE", 2.0, plus_two.outputs[0], label="2 / (p + 2)")
+    roughness = h.math(tree, "POWER", ratio.outputs[0], 0.25, label="Beckmann Roughness")
+    shine = h.vector_math(tree, "SCALE", inputs["Ocean Color"], label="Ocean Colour × Strength")
+    h.link(tree, inputs["Ocean Strength"], shine.inputs["Scale"])
+    ocean = h.add_node(tree, "ShaderNodeBsdfGlossy", label="Ocean Specular", distribution="BECKMANN")
+    h.link(tree, shine.outputs[0], ocean.inputs["Color"])
+    h.link(tree, roughness.outputs[0], ocean.inputs["Roughness"])
+    h.link(tree, normal, ocean.inputs["Normal"])
+
+    lit = h.add_node(tree, "ShaderNodeAddShader", label="Diffuse + Rim")
+    h.link(tree, toon.outputs[0], lit.inputs[0])
+    h.link(tree, rim.outputs[0], lit.inputs[1])
+    total = h.add_node(tree, "ShaderNodeAddShader", label="+ Ocean Specular")
+    h.link(tree, lit.outputs[0], total.inputs[0])
+    h.link(tree, ocean.outputs[0], total.inputs[1])
+    h.link(tree, total.outputs[0], group_out.inputs["Shader"])
+    h.link(tree, normal, group_out.inputs["Normal"])
+    h.link(tree, weight.outputs[0], group_out.inputs["Rim Weight"])
+    h.link(tree, roughness.outputs[0], group_out.inputs["Ocean Roughness"])
+    h.frame(tree, "Sand Normal", (grains,))
+    h.frame(tree, "Diffuse Contrast", (split, low, squashed, contrast_normal, toon))
+    h.frame(tree, "Rim", (facing, power, falloff, weight, tint, rim))
+    h.frame(tree, "Ocean Specular", (plus_two, ratio, roughness, shine, ocean))
+    h.frame(tree, "Combined (added: closures take no maximum)", (lit, total))
+    h.arrange(tree)
