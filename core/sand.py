@@ -48,10 +48,13 @@ def glint_cells(position, size, seed):
 
 def glint_facets(noise, tilt, normal, threshold, power):
     """(mask, facet normal): mask 1 where a grain can glint; its facet is the surface normal
-    tilted by facet_spread(power) x (2 tilt - 1), renormalised."""
+    leaning by facet_spread(power) x the part of (2 tilt - 1) along the surface, renormalised
+    (so a facet leans less than 90 degrees: atan(spread x sqrt 2) at most)."""
     mask = (np.asarray(noise, F32) > F32(threshold)).astype(F32)
-    facet = _unit(np.asarray(normal, np.float64) + facet_spread(power) * (2.0 * np.asarray(tilt) - 1.0))
-    return mask, facet
+    normal = np.broadcast_to(_unit(normal), np.shape(tilt)[:-1] + (3,))
+    lean = 2.0 * np.asarray(tilt, np.float64) - 1.0
+    lean = lean - np.sum(lean * normal, axis=-1, keepdims=True) * normal
+    return mask, _unit(normal + facet_spread(power) * lean)
 
 
 def sand_normal(normal, grain, strength):
@@ -71,15 +74,31 @@ def toon_intensity(angle, size=TOON_SIZE, smooth=TOON_SMOOTH):
     return np.where(angle < full, 1.0, np.where(angle < full + soft, ramp, 0.0))
 
 
+def bump_shadowing(smooth_normal, shading_normal, light):
+    """Cycles' softening of a diffuse closure whose normal is not the surface's (the bump
+    terminator fix of Conty Estevez et al. 2019): a microfacet-like shadowing whose roughness
+    grows with the angle between the two normals, at the light's angle to the smooth one."""
+    cos_d = np.clip(np.abs(np.sum(smooth_normal * shading_normal, axis=-1)), 0.0, 1.0)
+    tan2_d = (1.0 - cos_d**2) / np.maximum(cos_d**2, 1e-12)
+    alpha2 = np.clip(0.125 * tan2_d, 0.0, 1.0)
+    cos_i = np.maximum(np.abs(np.sum(smooth_normal * light, axis=-1)), 1e-6)
+    tan2_i = (1.0 - cos_i**2) / cos_i**2
+    return 2.0 / (1.0 + np.sqrt(1.0 + alpha2 * tan2_i))
+
+
 def journey_diffuse(normal, light, size=TOON_SIZE, smooth=TOON_SMOOTH, squash=SQUASH):
     """Radiance per unit of sun irradiance and albedo: the Toon BSDF on the squashed normal.
 
     Cycles' Toon BSDF returns intensity x pdf with no cosine, the pdf being uniform over the cone
-    of size + smooth (a hemisphere here): 1 / (2 pi (1 - cos(size + smooth)))."""
-    squashed = _unit(np.asarray(normal, np.float64) * np.array([1.0, 1.0, squash]))
-    cosine = np.clip(np.sum(squashed * np.asarray(light, np.float64), axis=-1), 0.0, 1.0)
+    of size + smooth (a hemisphere here): 1 / (2 pi (1 - cos(size + smooth))). As the squashed
+    normal is not the surface's, Cycles also applies its bump shadowing term."""
+    normal = _unit(normal)
+    light = np.asarray(light, np.float64)
+    squashed = _unit(normal * np.array([1.0, 1.0, squash]))
+    cosine = np.clip(np.sum(squashed * light, axis=-1), 0.0, 1.0)
     cone = min((size + smooth) * np.pi / 2, np.pi / 2)
-    return toon_intensity(np.arccos(cosine), size, smooth) / (2 * np.pi * (1.0 - np.cos(cone)))
+    toon = toon_intensity(np.arccos(cosine), size, smooth) / (2 * np.pi * (1.0 - np.cos(cone)))
+    return toon * bump_shadowing(normal, squashed, light)
 
 
 def ocean_roughness(exponent):

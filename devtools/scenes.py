@@ -5,7 +5,8 @@ import numpy as np
 
 
 def group_material(group, values, output="Mask", name="Probe"):
-    """A material that emits one output of a node group (a float output becomes a grey colour)."""
+    """A material showing one output of a node group: a shader output as the surface, any other
+    emitted (a float becomes a grey colour)."""
     material = bpy.data.materials.new(name)
     tree = material.node_tree
     tree.nodes.clear()
@@ -14,8 +15,8 @@ def group_material(group, values, output="Mask", name="Probe"):
     for key, value in values.items():
         node.inputs[key].default_value = value
     out = tree.nodes.new("ShaderNodeOutputMaterial")
-    if output == "Emission":
-        tree.links.new(node.outputs["Emission"], out.inputs["Surface"])
+    if node.outputs[output].type == "SHADER":
+        tree.links.new(node.outputs[output], out.inputs["Surface"])
     else:
         emission = tree.nodes.new("ShaderNodeEmission")
         emission.inputs["Strength"].default_value = 1.0

@@ -28,8 +28,9 @@ INPUTS = {  # name -> (type, description, default, min, max, subtype); append on
                      "glint); the facets tilt up to the angle where (N.V)^power is 1/2",
                      8.0, 0.0, None, None),
     "Color": ("NodeSocketColor", "Reflectance of a facet", (1.0, 0.95, 0.85, 1.0), None, None, None),
-    "Roughness": ("NodeSocketFloat", "Roughness of a facet's mirror: 0 images the sun disc sharply",
-                  0.05, 0.0, 1.0, "FACTOR"),
+    "Roughness": ("NodeSocketFloat", "Roughness of a facet's mirror: 0 images the sun disc sharply, and "
+                  "only facets turned to within a fraction of a degree glint; 0.3 lets a facet glint over "
+                  "about 5 degrees, so glints hold still when the camera moves", 0.3, 0.0, 1.0, "FACTOR"),
     "Normal": ("NodeSocketVector", "Surface normal the facets lean from (unlinked: the shading normal)",
                (0.0, 0.0, 0.0), None, None, h.SURFACE_NORMAL),
 }
@@ -66,7 +67,12 @@ def build(tree):
     spread = h.math(tree, "DIVIDE", sine.outputs[0], cosine.outputs[0], label="Spread = tan")
     centred = h.vector_math(tree, "MULTIPLY_ADD", inputs["Tilt"], (2.0, 2.0, 2.0), label="2 Tilt − 1")
     centred.inputs[2].default_value = (-1.0, -1.0, -1.0)
-    lean = h.vector_math(tree, "SCALE", centred.outputs[0], label="× Spread")
+    # Only the part along the surface: a facet leans, it never turns into the ground.
+    up = h.vector_math(tree, "DOT_PRODUCT", centred.outputs[0], normal, label="Along the Normal")
+    upright = h.vector_math(tree, "SCALE", normal, label="× Normal")
+    h.link(tree, up.outputs["Value"], upright.inputs["Scale"])
+    sideways = h.vector_math(tree, "SUBTRACT", centred.outputs[0], upright.outputs[0], label="In the Surface")
+    lean = h.vector_math(tree, "SCALE", sideways.outputs[0], label="× Spread")
     h.link(tree, spread.outputs[0], lean.inputs["Scale"])
     tilted = h.vector_math(tree, "ADD", normal, lean.outputs[0], label="Normal + Lean")
     facet = h.vector_math(tree, "NORMALIZE", tilted.outputs[0], label="Facet Normal")
@@ -86,6 +92,6 @@ def build(tree):
     h.frame(tree, "Surface Normal", normal_nodes)
     h.frame(tree, "Which Grains", (lit,))
     h.frame(tree, "How Far a Facet Leans", (power, inverse, half_cos, cosine, squared, sine_sq, sine, spread))
-    h.frame(tree, "Facet", (centred, lean, tilted, facet, mirror))
+    h.frame(tree, "Facet", (centred, up, upright, sideways, lean, tilted, facet, mirror))
     h.frame(tree, "Mirror on the Grain", (mix,))
     h.arrange(tree)
