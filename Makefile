@@ -42,7 +42,7 @@ test: lint
 
 bench: $(STAMP)
 	$(PY) -m pip install --disable-pip-version-check -q -r requirements-bench.txt
-	$(PY) bench/glints.py
+	$(PY) bench/looks.py
 	$(PY) bench/footprints.py
 	$(PY) bench/footprint_dicing.py
 	$(PY) bench/atmosphere.py

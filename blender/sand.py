@@ -29,7 +29,12 @@ from . import units
 SAND_COLOR = physical_sand.SAND_COLOR
 LOOKS = {"PHYSICAL": physical_sand, "JOURNEY": journey_sand}
 GLINT_INPUTS = ("Threshold", "Glint Size", "Facing Power", "Color", "Strength", "Roughness", "Seed")
-RIPPLE_INPUTS = ("Wavelength", "Amplitude", "Steep Fraction", "Lee Fraction")
+RIPPLE_INPUTS = ("Wavelength", "Amplitude", "Steep Fraction", "Lee Fraction", "Meander", "Meander Scale",
+                 "Variation")
+# The sand operator's ripple settings and the Ripples inputs they set.
+RIPPLE_SETTINGS = {"ripple_wavelength": "Wavelength", "ripple_amplitude": "Amplitude",
+                   "ripple_meander": "Meander", "ripple_meander_scale": "Meander Scale",
+                   "ripple_variation": "Variation"}
 STRUCTURE_KEY = "sandscape_structure"  # look / glints / source / ripples of the tree built
 # Node names inside our material.
 PRINT_SPACE, PRINT_REGION = "Sandscape Print Space", "Sandscape Print Region"
@@ -112,8 +117,8 @@ def read_settings(material):
         settings["seed"] = int(round(settings["seed"]))
     wave = ripple_node(material)
     if wave is not None:
-        settings["ripple_wavelength"] = wave.inputs["Wavelength"].default_value
-        settings["ripple_amplitude"] = wave.inputs["Amplitude"].default_value
+        for setting, name in RIPPLE_SETTINGS.items():
+            settings[setting] = wave.inputs[name].default_value
         settings["ripple_displacement"] = own.node(material.node_tree, RIPPLE_DISPLACEMENT) is not None
     image = image_node(material)
     if image is not None and image.image is not None:
@@ -181,9 +186,12 @@ def update_material(material, values, image=None, look="PHYSICAL", glint_mode="L
 
 
 def default_ripples(scene):
-    """Ripples as a new material gets them: the scene's wind, 12 cm apart, 4 mm high."""
-    return {"Wind": tuple(scene.sandscape_atmosphere.wind), "Wavelength": units.to_units(scene, 0.12),
-            "Amplitude": units.to_units(scene, 0.004)}
+    """Ripples as a new material gets them: the scene's wind, 12 cm apart, 4 mm high, crests
+    bending over 80 cm."""
+    return {"Wind": tuple(scene.sandscape_atmosphere.wind),
+            "Wavelength": units.to_units(scene, ripples.WAVELENGTH),
+            "Amplitude": units.to_units(scene, ripples.AMPLITUDE),
+            "Meander Scale": units.to_units(scene, ripples.MEANDER_SCALE)}
 
 
 def set_wind(scene, wind):

@@ -15,7 +15,7 @@ ripples             <-> "Sandscape Ripples": wind ripples' height and shading no
 import numpy as np
 
 from .glints import F32, _safe_divide
-from .noise_hash import white_noise_4d, white_noise_4d_color
+from .noise_hash import white_noise_3d, white_noise_4d, white_noise_4d_color
 
 MIN_FACET_COS = 0.15  # a facet tilts at most acos(0.15) = 81 degrees, whatever the power
 TOON_SIZE, TOON_SMOOTH = 0.839, 0.161  # acos(0.25) and the rest of a right angle, over pi / 2
@@ -139,18 +139,58 @@ def _wind_direction(wind):
     return w / length if length > 1e-9 else np.array([1.0, 0.0])
 
 
-def ripples(position, normal, wind, wavelength, amplitude, steep_fraction=0.2, lee_fraction=0.3):
-    """(height, normal) of the ripples at world positions (..., 3) with world normals: crests
-    across the wind, height = amplitude x weight x sin(2 pi (p . wind) / wavelength); the normal
-    tilts by the height's gradient along the wind."""
+def ripple_lattice(position, scale):
+    """Smooth value noise on a horizontal lattice of `scale` for the ripples' irregularity:
+    (meander m, variation g, gradient of m per unit length (..., 2)), m and g in 0..1.
+
+    Lattice corners (i, j, 0) get White Noise 3D's Value (m) and its Color's green (g, the 4D
+    hash of (i, j, 0, 1)); inside a cell they blend bilinearly with smoothstep weights, so the
+    noise and its gradient are continuous. In float32, as Cycles computes it.
+    """
+    q = np.asarray(position, F32)[..., :2] * (F32(1.0) / F32(scale))
+    cell = np.floor(q)
+    f = (q - cell).astype(np.float64)
+    s = f * f * (3.0 - 2.0 * f)
+    ds = 6.0 * f * (1.0 - f)
+    value, green = {}, {}
+    for dx in (0, 1):
+        for dy in (0, 1):
+            corner = np.stack([cell[..., 0] + dx, cell[..., 1] + dy, np.zeros_like(cell[..., 0])], axis=-1)
+            value[dx, dy] = white_noise_3d(corner).astype(np.float64)
+            green[dx, dy] = white_noise_4d(corner, 1.0).astype(np.float64)
+
+    def lerp(a, b, t):
+        return a + (b - a) * t
+
+    def blend(c):
+        return lerp(lerp(c[0, 0], c[1, 0], s[..., 0]), lerp(c[0, 1], c[1, 1], s[..., 0]), s[..., 1])
+
+    v = value
+    dx = ds[..., 0] * lerp(v[1, 0] - v[0, 0], v[1, 1] - v[0, 1], s[..., 1])
+    dy = ds[..., 1] * lerp(v[0, 1] - v[0, 0], v[1, 1] - v[1, 0], s[..., 0])
+    return blend(value), blend(green), np.stack([dx, dy], axis=-1) / scale
+
+
+def ripples(position, normal, wind, wavelength, amplitude, steep_fraction=0.2, lee_fraction=0.3,
+            meander=0.0, meander_scale=1.0, variation=0.0):
+    """(height, normal) of the ripples at world positions (..., 3) with world normals.
+
+    Crests run across the wind and wander: phase = 2 pi ((p . wind) / wavelength + meander (2 m - 1)),
+    m the lattice noise (ripple_lattice); height = amplitude x weight x (1 - variation g) x sin(phase).
+    The normal tilts by the height's gradient through the phase; the slow change of amplitude and
+    weight is left out (0.2 degrees of a 13 degree tilt at the defaults, tests/test_ripples.py).
+    """
     position = np.asarray(position, np.float64)
     normal = _unit(normal)
     direction = _wind_direction(wind)
-    phase = 2 * np.pi * (position[..., 0] * direction[0] + position[..., 1] * direction[1]) / wavelength
-    weight = ripple_weight(normal, wind, steep_fraction, lee_fraction)
-    height = amplitude * weight * np.sin(phase)
-    slope = amplitude * weight * np.cos(phase) * 2 * np.pi / wavelength
+    k = 2 * np.pi / wavelength
+    m, g, dm = ripple_lattice(position, meander_scale)
+    phase = k * (position[..., 0] * direction[0] + position[..., 1] * direction[1]) + \
+        2 * np.pi * meander * (2.0 * m - 1.0)
+    size = amplitude * ripple_weight(normal, wind, steep_fraction, lee_fraction) * (1.0 - variation * g)
+    height = size * np.sin(phase)
+    phase_gradient = k * direction + 4 * np.pi * meander * dm
     gradient = np.zeros(position.shape)
-    gradient[..., 0], gradient[..., 1] = slope * direction[0], slope * direction[1]
+    gradient[..., :2] = (size * np.cos(phase))[..., None] * phase_gradient
     along = np.sum(gradient * normal, axis=-1, keepdims=True)
     return height, _unit(normal - (gradient - along * normal))

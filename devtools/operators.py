@@ -25,10 +25,11 @@ def _run(idname, method, context, props):
     values = {p.identifier: tuple(p.default_array) if getattr(p, "is_array", False) else p.default
               for p in rna.properties if p.identifier != "rna_type"}
     reports = []
-    stand_in = types.SimpleNamespace(**{**values, **props}, bl_rna=rna,
-                                     report=lambda kinds, text: reports.append((set(kinds), text)))
+    stand_in = _StandIn(**{**values, **props}, bl_rna=rna,
+                        report=lambda kinds, text: reports.append((set(kinds), text)))
     stand_in.properties = stand_in  # an operator's own properties, as value checks read them
-    stand_in.is_property_set = lambda name: name in props
+    stand_in.is_property_set = lambda name: name in props or name in stand_in.assigned
+    stand_in.assigned = set()
     for base in reversed(cls.__mro__):
         if base.__module__.startswith("bpy"):
             continue
@@ -40,3 +41,12 @@ def _run(idname, method, context, props):
     if method == "invoke":
         return cls.invoke(stand_in, context or bpy.context, None), reports
     return cls.execute(stand_in, context or bpy.context), reports
+
+
+class _StandIn(types.SimpleNamespace):
+    """Properties an operator assigns count as set from then on, as with a real operator."""
+
+    def __setattr__(self, name, value):
+        if "assigned" in vars(self):
+            self.assigned.add(name)
+        super().__setattr__(name, value)

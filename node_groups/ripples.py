@@ -1,10 +1,13 @@
 """Sandscape Ripples: wind ripples on the sand, as a height and a shading normal.
 
-Crests run across the wind: height = Amplitude x weight x sin(2 pi (p . wind) / Wavelength), p the
-world position and wind the horizontal wind direction. The weight fades the ripples on steep
-slopes (Steep Fraction at the 35 degree angle of repose) and on slopes turned away from the wind
-(down to Lee Fraction), as seed 004 blends its ripple textures by slope and direction. The
-normal tilts by the height's gradient along the wind. Twin: core.sand.ripples.
+Crests run across the wind and wander: phase = 2 pi ((p . wind) / Wavelength + Meander (2 m - 1)),
+p the world position, wind the horizontal wind direction and m a smooth value noise on a lattice
+of Meander Scale (so crests bend, join and split as real ones do, rather than ruling the sand
+like corduroy); height = Amplitude x weight x (1 - Variation g) x sin(phase), g a second value
+of the same noise. The weight fades the ripples on steep slopes (Steep Fraction at the
+35 degree angle of repose) and on slopes turned away from the wind (down to Lee Fraction), as
+seed 004 blends its ripple textures by slope and direction. The normal tilts by the height's
+gradient through the phase. Twin: core.sand.ripples.
 """
 
 import math
@@ -15,6 +18,9 @@ from . import helper as h
 NAME = "Sandscape Ripples"
 VERSION = 1
 TREE_TYPE = "ShaderNodeTree"
+WAVELENGTH, AMPLITUDE = 0.12, 0.004  # metres: ripples of fine sand
+MEANDER_SCALE = 0.8  # metres: about 7 wavelengths between one bend of a crest and the next
+MEANDER, VARIATION = 0.35, 0.5
 DESCRIPTION = ("Wind ripples: crests across the wind, Wavelength apart, fading on steep and lee slopes; "
                "a height and the rippled normal")
 
@@ -24,15 +30,21 @@ def build(tree):
     h.add_input(tree, "Wind", "NodeSocketVector", "Wind velocity (only its horizontal direction counts)",
                 (3.0, 1.0, 0.0))
     h.add_input(tree, "Wavelength", "NodeSocketFloat", "Distance from crest to crest (sand: 5 to 20 cm)",
-                0.12, 1e-4, None, "DISTANCE")
-    h.add_input(tree, "Amplitude", "NodeSocketFloat", "Height of a crest above the mean", 0.004, 0.0, None,
-                "DISTANCE")
+                WAVELENGTH, 1e-4, None, "DISTANCE")
+    h.add_input(tree, "Amplitude", "NodeSocketFloat", "Height of a crest above the mean", AMPLITUDE, 0.0,
+                None, "DISTANCE")
     h.add_input(tree, "Steep Fraction", "NodeSocketFloat", "Share of the ripples kept on a 35 degree slope",
                 0.2, 0.0, 1.0, "FACTOR")
     h.add_input(tree, "Lee Fraction", "NodeSocketFloat", "Share kept on a slope turned away from the wind",
                 0.3, 0.0, 1.0, "FACTOR")
     h.add_input(tree, "Normal", "NodeSocketVector", "Surface normal (unlinked: the shading normal)",
                 (0.0, 0.0, 0.0), subtype=h.SURFACE_NORMAL)
+    h.add_input(tree, "Meander", "NodeSocketFloat", "How far crests wander, in wavelengths: 0 gives "
+                "straight parallel crests", MEANDER, 0.0, 4.0)
+    h.add_input(tree, "Meander Scale", "NodeSocketFloat", "Distance over which a crest bends one way and "
+                "back", MEANDER_SCALE, 1e-4, None, "DISTANCE")
+    h.add_input(tree, "Variation", "NodeSocketFloat", "How much the ripples' height varies from place to "
+                "place: 0 keeps Amplitude everywhere", VARIATION, 0.0, 1.0, "FACTOR")
     h.add_output(tree, "Height", "NodeSocketFloat", "Ripple height above the surface")
     h.add_output(tree, "Normal", "NodeSocketVector", "The rippled normal")
     group_in, group_out = h.group_io(tree)
@@ -52,7 +64,13 @@ def build(tree):
     along = h.vector_math(tree, "DOT_PRODUCT", position.outputs["Position"], direction.outputs[0],
                           label="Distance along the Wind")
     cycles = h.math(tree, "DIVIDE", along.outputs["Value"], inputs["Wavelength"], label="÷ Wavelength")
-    phase = h.math(tree, "MULTIPLY", cycles.outputs[0], 2 * math.pi, label="Phase")
+    straight = h.math(tree, "MULTIPLY", cycles.outputs[0], 2 * math.pi, label="Straight Phase")
+    lattice, lattice_nodes = _lattice_noise(tree, position.outputs["Position"], inputs["Meander Scale"])
+    meander_radians = h.math(tree, "MULTIPLY", inputs["Meander"], 2 * math.pi, label="Meander × 2π")
+    centred = h.math(tree, "MULTIPLY_ADD", lattice["m"], 2.0, label="2 m − 1")
+    centred.inputs[2].default_value = -1.0
+    shift = h.math(tree, "MULTIPLY", centred.outputs[0], meander_radians.outputs[0], label="Meander Shift")
+    phase = h.math(tree, "ADD", straight.outputs[0], shift.outputs[0], label="Phase")
     wave = h.math(tree, "SINE", phase.outputs[0], label="sin")
     wave_slope = h.math(tree, "COSINE", phase.outputs[0], label="cos")
 
@@ -78,14 +96,22 @@ def build(tree):
     h.link(tree, lee_loss.outputs[0], lee.inputs[0])
     h.link(tree, leeness.outputs["Result"], lee.inputs[1])
     weight = h.math(tree, "MULTIPLY", steep.outputs[0], lee.outputs[0], label="Weight")
-    scale = h.math(tree, "MULTIPLY", inputs["Amplitude"], weight.outputs[0], label="Amplitude × Weight")
+    weighted = h.math(tree, "MULTIPLY", inputs["Amplitude"], weight.outputs[0], label="Amplitude × Weight")
+    varied = h.math(tree, "MULTIPLY", inputs["Variation"], lattice["g"], label="Variation × g")
+    keep = h.math(tree, "SUBTRACT", 1.0, varied.outputs[0], label="1 − Variation g")
+    scale = h.math(tree, "MULTIPLY", weighted.outputs[0], keep.outputs[0], label="Size")
 
     height = h.math(tree, "MULTIPLY", scale.outputs[0], wave.outputs[0], label="Height")
     k = h.math(tree, "DIVIDE", 2 * math.pi, inputs["Wavelength"], label="2π / Wavelength")
-    rate = h.math(tree, "MULTIPLY", scale.outputs[0], wave_slope.outputs[0], label="× cos")
-    gradient_size = h.math(tree, "MULTIPLY", rate.outputs[0], k.outputs[0], label="Slope of the Height")
-    gradient = h.vector_math(tree, "SCALE", direction.outputs[0], label="Gradient")
-    h.link(tree, gradient_size.outputs[0], gradient.inputs["Scale"])
+    across = h.vector_math(tree, "SCALE", direction.outputs[0], label="k × Wind Direction")
+    h.link(tree, k.outputs[0], across.inputs["Scale"])
+    bend_rate = h.math(tree, "MULTIPLY", meander_radians.outputs[0], 2.0, label="2 × Meander × 2π")
+    bend = h.vector_math(tree, "SCALE", lattice["gradient"], label="× ∇m")
+    h.link(tree, bend_rate.outputs[0], bend.inputs["Scale"])
+    phase_gradient = h.vector_math(tree, "ADD", across.outputs[0], bend.outputs[0], label="∇Phase")
+    rate = h.math(tree, "MULTIPLY", scale.outputs[0], wave_slope.outputs[0], label="Size × cos")
+    gradient = h.vector_math(tree, "SCALE", phase_gradient.outputs[0], label="Gradient")
+    h.link(tree, rate.outputs[0], gradient.inputs["Scale"])
     normal_part = h.vector_math(tree, "DOT_PRODUCT", gradient.outputs[0], normal, label="Along the Normal")
     back = h.vector_math(tree, "SCALE", normal, label="× Normal")
     h.link(tree, normal_part.outputs["Value"], back.inputs["Scale"])
@@ -96,9 +122,83 @@ def build(tree):
     h.link(tree, rippled.outputs[0], group_out.inputs["Normal"])
     h.frame(tree, "Surface Normal", normal_nodes)
     h.frame(tree, "Wind Direction", (flat, length, calm, fallback, wind, direction))
-    h.frame(tree, "Crests across the Wind", (position, along, cycles, phase, wave, wave_slope))
+    h.frame(tree, "Lattice Noise (m, g)", lattice_nodes)
+    h.frame(tree, "Crests across the Wind, Meandering", (position, along, cycles, straight, meander_radians,
+                                                          centred, shift, phase, wave, wave_slope))
     h.frame(tree, "Fading on Steep and Lee Slopes", (split, upright, slope, steepness, steep_loss, steep,
-                                                     downwind, leeness, lee_loss, lee, weight, scale))
-    h.frame(tree, "Height and Normal", (height, k, rate, gradient_size, gradient, normal_part, back,
-                                        tangential, tilted, rippled))
+                                                     downwind, leeness, lee_loss, lee, weight, weighted,
+                                                     varied, keep, scale))
+    h.frame(tree, "Height and Normal", (height, k, across, bend_rate, bend, phase_gradient, rate, gradient,
+                                        normal_part, back, tangential, tilted, rippled))
     h.arrange(tree)
+
+
+def _lattice_noise(tree, position, lattice_scale):
+    """Value noise m and g and m's horizontal gradient (sockets in a dict; twin:
+    core.sand.ripple_lattice), and the nodes made."""
+    inverse = h.math(tree, "DIVIDE", 1.0, lattice_scale, label="1 / Meander Scale")
+    scaled = h.vector_math(tree, "SCALE", position, label="Position / Scale")
+    h.link(tree, inverse.outputs[0], scaled.inputs["Scale"])
+    flat = h.vector_math(tree, "MULTIPLY", scaled.outputs[0], (1.0, 1.0, 0.0), label="Horizontal")
+    cell = h.vector_math(tree, "FLOOR", flat.outputs[0], label="Cell")
+    inside = h.vector_math(tree, "SUBTRACT", flat.outputs[0], cell.outputs[0], label="Inside the Cell")
+    split = h.add_node(tree, "ShaderNodeSeparateXYZ", label="f")
+    h.link(tree, inside.outputs[0], split.inputs[0])
+    nodes = [inverse, scaled, flat, cell, inside, split]
+    weights, rates = [], []
+    for axis in ("X", "Y"):
+        f = split.outputs[axis]
+        smooth = h.add_node(tree, "ShaderNodeMapRange", label=f"Smoothstep {axis}",
+                            interpolation_type="SMOOTHSTEP",
+                            inputs={"From Min": 0.0, "From Max": 1.0, "To Min": 0.0, "To Max": 1.0})
+        h.link(tree, f, smooth.inputs["Value"])
+        rest = h.math(tree, "SUBTRACT", 1.0, f, label=f"1 − f{axis.lower()}")
+        product = h.math(tree, "MULTIPLY", f, rest.outputs[0], label=f"f{axis.lower()} (1 − f)")
+        rate = h.math(tree, "MULTIPLY", product.outputs[0], 6.0, label=f"Smoothstep' {axis}")
+        weights.append(smooth.outputs["Result"])
+        rates.append(rate.outputs[0])
+        nodes += [smooth, rest, product, rate]
+    value, green = {}, {}
+    for dx in (0, 1):
+        for dy in (0, 1):
+            corner = h.vector_math(tree, "ADD", cell.outputs[0], (float(dx), float(dy), 0.0),
+                                   label=f"Corner {dx}{dy}")
+            noise = h.add_node(tree, "ShaderNodeTexWhiteNoise", label=f"Noise {dx}{dy}",
+                               noise_dimensions="3D")
+            h.link(tree, corner.outputs[0], noise.inputs["Vector"])
+            colour = h.add_node(tree, "ShaderNodeSeparateColor", label=f"Green {dx}{dy}")
+            h.link(tree, noise.outputs["Color"], colour.inputs["Color"])
+            value[dx, dy], green[dx, dy] = noise.outputs["Value"], colour.outputs["Green"]
+            nodes += [corner, noise, colour]
+
+    def lerp(a, b, t, label):
+        difference = h.math(tree, "SUBTRACT", b, a, label=f"{label}: b − a")
+        mixed = h.add_node(tree, "ShaderNodeMath", label=label, operation="MULTIPLY_ADD")
+        h.link(tree, difference.outputs[0], mixed.inputs[0])
+        h.link(tree, t, mixed.inputs[1])
+        h.link(tree, a, mixed.inputs[2])
+        nodes.extend((difference, mixed))
+        return mixed.outputs[0], difference.outputs[0]
+
+    sx, sy = weights
+    out = {}
+    for key, c in (("m", value), ("g", green)):
+        low, low_dx = lerp(c[0, 0], c[1, 0], sx, f"{key} at y0")
+        high, high_dx = lerp(c[0, 1], c[1, 1], sx, f"{key} at y1")
+        out[key], _ = lerp(low, high, sy, key)
+        if key == "m":
+            along_x, _ = lerp(low_dx, high_dx, sy, "∂m/∂x ÷ s'")
+    left = h.math(tree, "SUBTRACT", value[0, 1], value[0, 0], label="m: left edge")
+    right = h.math(tree, "SUBTRACT", value[1, 1], value[1, 0], label="m: right edge")
+    nodes += [left, right]
+    along_y, _ = lerp(left.outputs[0], right.outputs[0], sx, "∂m/∂y ÷ s'")
+    dx = h.math(tree, "MULTIPLY", along_x, rates[0], label="∂m/∂x")
+    dy = h.math(tree, "MULTIPLY", along_y, rates[1], label="∂m/∂y")
+    combine = h.add_node(tree, "ShaderNodeCombineXYZ", label="∇m per Cell")
+    h.link(tree, dx.outputs[0], combine.inputs["X"])
+    h.link(tree, dy.outputs[0], combine.inputs["Y"])
+    gradient = h.vector_math(tree, "SCALE", combine.outputs[0], label="∇m")
+    h.link(tree, inverse.outputs[0], gradient.inputs["Scale"])
+    nodes += [dx, dy, combine, gradient]
+    out["gradient"] = gradient.outputs[0]
+    return out, nodes

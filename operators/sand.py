@@ -11,7 +11,7 @@ from bpy.props import (
 )
 
 from ..blender import sand, units
-from ..node_groups import glints, lit_glints
+from ..node_groups import glints, lit_glints, ripples
 from .base import SandscapeOperator, active_mesh, editable_problem, value_problem
 
 # SKIP_SAVE: a value not passed is not the last run's but the material's (invoke) or the default.
@@ -20,7 +20,9 @@ SKIP = {"SKIP_SAVE"}
 MIRROR = {name: {"name": name, "description": spec[1], "default": spec[2], "options": SKIP}
           for name, spec in {**glints.INPUTS, **lit_glints.INPUTS}.items()}
 GLINT_SIZE_METRES = glints.INPUTS["Glint Size"][2]
-RIPPLE_METRES = {"ripple_wavelength": 0.12, "ripple_amplitude": 0.004}
+RIPPLE_METRES = {"ripple_wavelength": ripples.WAVELENGTH, "ripple_amplitude": ripples.AMPLITUDE,
+                 "ripple_meander_scale": ripples.MEANDER_SCALE}
+LENGTH_METRES = {"glint_size": GLINT_SIZE_METRES, **RIPPLE_METRES}
 
 
 class SANDSCAPE_OT_add_sand_material(SandscapeOperator, bpy.types.Operator):
@@ -33,7 +35,8 @@ class SANDSCAPE_OT_add_sand_material(SandscapeOperator, bpy.types.Operator):
     LIMITS = {"threshold": (0.0, 1.0), "glint_size": (1e-7, 1e7), "facing_power": (0.0, 1e7),
               "color": (0.0, 1e4), "strength": (0.0, 1e7), "roughness": (0.0, 1.0), "seed": (0, 2**24),
               "image_resolution": (1, 16384), "ripple_wavelength": (1e-4, 1e3),
-              "ripple_amplitude": (0.0, 10.0)}
+              "ripple_amplitude": (0.0, 10.0), "ripple_meander": (0.0, 4.0),
+              "ripple_meander_scale": (1e-4, 1e4), "ripple_variation": (0.0, 1.0)}
 
     look: EnumProperty(
         name="Look", default="PHYSICAL", options=SKIP,
@@ -77,19 +80,27 @@ class SANDSCAPE_OT_add_sand_material(SandscapeOperator, bpy.types.Operator):
         name="Ripple Amplitude", default=RIPPLE_METRES["ripple_amplitude"], soft_min=0.0, soft_max=0.05,
         subtype="DISTANCE", unit="LENGTH", precision=4, options=SKIP,
         description="Height of a crest above the mean")
+    ripple_meander: FloatProperty(
+        name="Ripple Meander", default=ripples.MEANDER, soft_min=0.0, soft_max=1.0,
+        options=SKIP, description="How far crests wander, in wavelengths: 0 gives straight parallel crests")
+    ripple_meander_scale: FloatProperty(
+        name="Meander Scale", default=RIPPLE_METRES["ripple_meander_scale"], soft_min=0.1, soft_max=5.0,
+        subtype="DISTANCE", unit="LENGTH", options=SKIP,
+        description="Distance over which a crest bends one way and back")
+    ripple_variation: FloatProperty(
+        name="Ripple Variation", default=ripples.VARIATION, soft_min=0.0, soft_max=1.0,
+        subtype="FACTOR", options=SKIP,
+        description="How much the ripples' height varies from place to place: 0 keeps the amplitude "
+        "everywhere")
     ripple_displacement: BoolProperty(
         name="Ripple Displacement", default=False, options=SKIP,
         description="Also displace by the ripples (true geometry where the footprint patch dices finely); "
         "off: shading only")
 
     def invoke(self, context, _event):
-        """Start from the material the object has (the sidebar's Update button), else from the
-        defaults in the scene's units; values a script passed are kept."""
+        """Start from the material the object has (the sidebar's Update button); values a script
+        passed are kept."""
         current = sand.read_settings(sand.find_sand_material(context.active_object))
-        if not current:
-            for name, metres in (("glint_size", GLINT_SIZE_METRES), *RIPPLE_METRES.items()):
-                if not self.properties.is_property_set(name):
-                    setattr(self, name, units.to_units(context.scene, metres))
         for name, value in current.items():
             if not self.properties.is_property_set(name):
                 setattr(self, name, value)
@@ -107,6 +118,9 @@ class SANDSCAPE_OT_add_sand_material(SandscapeOperator, bpy.types.Operator):
         return None
 
     def execute(self, context):
+        for name, metres in LENGTH_METRES.items():  # a length not given is its default in metres
+            if not self.properties.is_property_set(name):
+                setattr(self, name, units.to_units(context.scene, metres))
         problem = self.problem(context)
         if problem:
             return self.fail(problem)
@@ -121,7 +135,7 @@ class SANDSCAPE_OT_add_sand_material(SandscapeOperator, bpy.types.Operator):
         waves = None
         if self.ripples:
             waves = {"Wind": tuple(context.scene.sandscape_atmosphere.wind),
-                     "Wavelength": self.ripple_wavelength, "Amplitude": self.ripple_amplitude,
+                     **{name: getattr(self, setting) for setting, name in sand.RIPPLE_SETTINGS.items()},
                      "Displacement": self.ripple_displacement}
         material, added = sand.apply(obj, values, image, self.look, self.glints, waves)
         look = f"{self.look.title()} sand, {self.glints.lower()} glints" + (", ripples" if waves else "")
