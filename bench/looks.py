@@ -4,8 +4,8 @@ The demo's dunes, walker and prints under its low sun, without the dusty air and
 (their noise would swamp the sand's), at the demo's frame:
 
 1. Render time at equal samples (median of 3) of the bare Principled BSDF (sand colour, nothing
-   else), PHYSICAL and JOURNEY with lit glints, each without glints, and PHYSICAL with the
-   emission glints.
+   else), PHYSICAL and JOURNEY with lit glints, each without glints and without ripples, and
+   PHYSICAL with the emission glints.
 2. Samples each look needs for glint RMSE < 0.01. Glints are sub-pixel highlights far brighter
    than the sand, so a reference render would need tens of thousands of samples to be quieter
    than that; instead the RMSE of an N-sample render against the converged image is estimated
@@ -84,14 +84,14 @@ def main(argv=None):
     ripple_values = sand.default_ripples(scene)
     bare = bpy.data.materials.new("Bare Principled")
     bsdf = bare.node_tree.nodes["Principled BSDF"]
-    bsdf.inputs["Base Color"].default_value = sandscape.node_groups.physical_sand.SAND_COLOR
+    bsdf.inputs["Base Color"].default_value = sandscape.core.sand.SAND_COLOR
 
-    def use(look, glints="LIT", values=glint_values):
+    def use(look, glints="LIT", values=glint_values, waves=True):
         if look == "BARE":
             terrain.material_slots[terrain.active_material_index].material = bare
             return
         terrain.material_slots[terrain.active_material_index].material = material
-        sand.update_material(material, values, None, look, glints, ripple_values)
+        sand.update_material(material, values, None, look, glints, ripple_values if waves else None)
 
     def render(spp, size):
         scene.cycles.samples = spp
@@ -105,14 +105,16 @@ def main(argv=None):
                 ("PHYSICAL, no glints", "PHYSICAL", "LIT", no_glints),
                 ("PHYSICAL, emission glints", "PHYSICAL", "EMISSION", glint_values),
                 ("JOURNEY, lit glints", "JOURNEY", "LIT", glint_values),
-                ("JOURNEY, no glints", "JOURNEY", "LIT", no_glints)]
+                ("JOURNEY, no glints", "JOURNEY", "LIT", no_glints),
+                ("PHYSICAL, lit glints, no ripples", "PHYSICAL", "LIT", glint_values, False),
+                ("JOURNEY, lit glints, no ripples", "JOURNEY", "LIT", glint_values, False)]
     timings = {}
-    for label, look, glints, values in variants:
-        use(look, glints, values)
+    for label, look, glints, values, *waves in variants:
+        use(look, glints, values, *waves)
         runs = [render(timing_spp, timing_size) for _ in range(3)]
         timings[label] = statistics.median(r[0] for r in runs)
         print(f"{label}: {timings[label]:.3f} s")
-        if values is glint_values:
+        if values is glint_values and not waves:
             scene.render.image_settings.file_format = "PNG"
             scene.render.filepath = str(out / f"bench-look-{look.lower()}-{glints.lower()}.png")
             bpy.ops.render.render(write_still=True)

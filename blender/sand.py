@@ -12,6 +12,7 @@ import bpy
 import numpy as np
 
 from ..core import glints as glint_twin
+from ..core import sand as core_sand
 from ..node_groups import (
     footprint_height,
     glint_facet,
@@ -26,7 +27,7 @@ from ..node_groups import helper as h
 from . import ownership as own
 from . import units
 
-SAND_COLOR = physical_sand.SAND_COLOR
+SAND_COLOR = core_sand.SAND_COLOR
 LOOKS = {"PHYSICAL": physical_sand, "JOURNEY": journey_sand}
 GLINT_INPUTS = ("Threshold", "Glint Size", "Facing Power", "Color", "Strength", "Roughness", "Seed")
 RIPPLE_INPUTS = ("Wavelength", "Amplitude", "Steep Fraction", "Lee Fraction", "Meander", "Meander Scale",

@@ -20,6 +20,7 @@ from .noise_hash import white_noise_3d, white_noise_4d, white_noise_4d_color
 MIN_FACET_COS = 0.15  # a facet tilts at most acos(0.15) = 81 degrees, whatever the power
 TOON_SIZE, TOON_SMOOTH = 0.839, 0.161  # acos(0.25) and the rest of a right angle, over pi / 2
 SQUASH = 0.3  # Journey's factor on the normal's vertical component
+SAND_COLOR = (0.62, 0.45, 0.27, 1.0)  # linear albedo of both looks (a warm quartz sand)
 REPOSE = np.radians(35.0)  # the slope at which ripples keep their Steep Fraction
 
 

@@ -103,6 +103,30 @@ def project(camera_obj, points, width, height):
     return (ndc[..., 0] + 1.0) / 2.0 * width, (ndc[..., 1] + 1.0) / 2.0 * height
 
 
+def glints_kept_after_camera_move(camera_obj, glints_in_render, width, height, enough):
+    """Share of the glint pixels of a render that are glint pixels again after the camera moves
+    5 cm and turns 1 degree. Each glint pixel of the first render is traced to the ground (z = 0)
+    and projected into the second; pixels whose 3 x 3 neighbourhood there straddles a glint edge
+    are left out. glints_in_render: () -> boolean (height, width) image; asserts that at least
+    `enough` pixels were judged."""
+    a = glints_in_render()
+    origins, directions = camera_rays(camera_obj, width, height)
+    camera_obj.location.x += 0.05
+    camera_obj.rotation_euler.z -= np.radians(1.0)
+    bpy.context.view_layer.update()
+    b = glints_in_render()
+    t = -origins[..., 2] / directions[..., 2]
+    points = origins + t[..., None] * directions
+    col, row = project(camera_obj, points, width, height)
+    col, row = np.floor(col).astype(int), np.floor(row).astype(int)
+    inside = a & (col >= 1) & (col < width - 1) & (row >= 1) & (row < height - 1)
+    col, row = col[inside], row[inside]
+    window = np.stack([b[row + dy, col + dx] for dy in (-1, 0, 1) for dx in (-1, 0, 1)])
+    settled = window.all(axis=0) | ~window.any(axis=0)
+    assert settled.sum() > enough, "too few glint pixels to judge"
+    return b[row, col][settled].mean()
+
+
 def height_field(size, subdivisions, height=None, name="Terrain"):
     """A square grid mesh of `size` metres centred on the origin, z = height(x, y) (vectorised), UV 0..1."""
     axis = np.linspace(-size / 2, size / 2, subdivisions + 1)

@@ -41,16 +41,9 @@ OUTPUTS = {
 }
 
 
-def add_sockets(tree, names, inputs=INPUTS):
-    for name in names:
-        h.add_input(tree, name, *inputs[name])
-    for name, (socket_type, description) in OUTPUTS.items():
-        h.add_output(tree, name, socket_type, description)
-
-
 def build(tree):
     tree.description = DESCRIPTION
-    add_sockets(tree, INPUTS)
+    h.add_sockets(tree, INPUTS, INPUTS, OUTPUTS)
     group_in, group_out = h.group_io(tree)
     inputs = group_in.outputs
     normal, normal_nodes = h.normal_or_geometry(tree, inputs["Normal"])

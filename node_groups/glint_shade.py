@@ -34,17 +34,9 @@ OUTPUTS = {
 }
 
 
-def add_sockets(tree, input_names, inputs=INPUTS):
-    """The named inputs in that order, then every output."""
-    for name in input_names:
-        h.add_input(tree, name, *inputs[name])
-    for name, (socket_type, description) in OUTPUTS.items():
-        h.add_output(tree, name, socket_type, description)
-
-
 def build(tree):
     tree.description = DESCRIPTION
-    add_sockets(tree, ("Noise", "Threshold", "Facing Power", "Color", "Strength"))
+    h.add_sockets(tree, ("Noise", "Threshold", "Facing Power", "Color", "Strength"), INPUTS, OUTPUTS)
 
     group_in, group_out = h.group_io(tree)
     inputs = group_in.outputs

@@ -1,6 +1,6 @@
 """Sandscape Glints: procedural glints on object-space cells.
 
-Each cell of Glint Size metres (in the object's own space, so glints stick to the
+Each cell of Glint Size (in the object's own space and units, so glints stick to the
 surface and do not crawl when the camera moves) gets a white-noise value seeded by
 Seed; Sandscape Glint Shade turns it into the glint. Twin: core.glints.glints.
 """
@@ -9,26 +9,27 @@ from . import glint_shade
 from . import helper as h
 
 NAME = "Sandscape Glints"
-VERSION = 2
+VERSION = 3
 TREE_TYPE = "ShaderNodeTree"
 DESCRIPTION = (
-    "Sparkling sand grains: object-space cells of Glint Size metres, a seeded random "
+    "Sparkling sand grains: object-space cells of Glint Size, a seeded random "
     "value per cell, lit above Threshold and only where the view meets the normal")
 
 
-INPUTS = {
-    **glint_shade.INPUTS,
-    "Glint Size": ("NodeSocketFloat", "Edge of a glint cell in metres of object space "
-                   "(scaling the object scales it)", 0.003, 0.0, None, "DISTANCE"),
-    "Seed": ("NodeSocketFloat", "Another seed gives another random set of glinting cells",
+# A grain's cell, shared with the lit glints.
+CELL_INPUTS = {
+    "Glint Size": ("NodeSocketFloat", "Edge of a grain's cell in the object's own units (scaling the "
+                   "object scales it)", 0.003, 0.0, None, "DISTANCE"),
+    "Seed": ("NodeSocketFloat", "Another seed gives another random set of glinting grains",
              0.0, None, None, None),
 }
+INPUTS = {**glint_shade.INPUTS, **CELL_INPUTS}
 
 
 def build(tree):
     tree.description = DESCRIPTION
-    glint_shade.add_sockets(tree, ("Threshold", "Glint Size", "Facing Power", "Color", "Strength", "Seed"),
-                            INPUTS)
+    h.add_sockets(tree, ("Threshold", "Glint Size", "Facing Power", "Color", "Strength", "Seed"), INPUTS,
+                  glint_shade.OUTPUTS)
 
     group_in, group_out = h.group_io(tree)
     inputs = group_in.outputs

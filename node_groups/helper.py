@@ -113,21 +113,17 @@ def add_node(tree, node_type, location=(0, 0), label=None, inputs=None, name=Non
 
 def math(tree, operation, a=None, b=None, location=(0, 0), label=None):
     """A Math node whose two inputs are either sockets (linked) or numbers (defaults)."""
-    node = add_node(tree, "ShaderNodeMath", location, label, operation=operation)
-    for index, value in enumerate((a, b)):
-        if value is None:
-            continue
-        if isinstance(value, bpy.types.NodeSocket):
-            tree.links.new(value, node.inputs[index])
-        else:
-            node.inputs[index].default_value = value
-    return node
+    return _operands(tree, add_node(tree, "ShaderNodeMath", location, label, operation=operation), a, b)
 
 
 def vector_math(tree, operation, a=None, b=None, label=None, **inputs):
     """A Vector Math node whose first two inputs are sockets (linked) or values (defaults)."""
     node = add_node(tree, "ShaderNodeVectorMath", label=label, operation=operation, inputs=inputs)
-    for index, value in enumerate((a, b)):
+    return _operands(tree, node, a, b)
+
+
+def _operands(tree, node, *values):
+    for index, value in enumerate(values):
         if value is None:
             continue
         if isinstance(value, bpy.types.NodeSocket):
@@ -135,6 +131,15 @@ def vector_math(tree, operation, a=None, b=None, label=None, **inputs):
         else:
             node.inputs[index].default_value = value
     return node
+
+
+def add_sockets(tree, input_names, inputs, outputs):
+    """The named inputs of a socket table (name -> add_input's arguments) in that order, then
+    every output of an output table (name -> (type, description))."""
+    for name in input_names:
+        add_input(tree, name, *inputs[name])
+    for name, (socket_type, description) in outputs.items():
+        add_output(tree, name, socket_type, description)
 
 
 def normal_or_geometry(tree, normal):

@@ -26,19 +26,12 @@ VERSION = 1
 TREE_TYPE = "ShaderNodeTree"
 DESCRIPTION = ("Journey's sand (seed 004): diffuse contrast, sand normal, rim, ocean specular as Cycles "
                "closures; add the lit glints for the glitter")
-SAND_COLOR = (0.62, 0.45, 0.27, 1.0)
 
 
 def build(tree):
     tree.description = DESCRIPTION
-    h.add_input(tree, "Color", "NodeSocketColor", "Albedo of the sand", SAND_COLOR)
-    h.add_input(tree, "Grain Size", "NodeSocketFloat", "Edge of a grain in the object's own units", 0.002,
-                0.0, None, "DISTANCE")
-    h.add_input(tree, "Grain Strength", "NodeSocketFloat", "Sand normal: how far the grains turn the "
-                "normal", 0.15, 0.0, 1.0, "FACTOR")
-    h.add_input(tree, "Seed", "NodeSocketFloat", "Another seed gives other grains", 0.0)
-    h.add_input(tree, "Normal", "NodeSocketVector", "Surface normal, e.g. the ripples' (unlinked: the "
-                "shading normal)", (0.0, 0.0, 0.0), subtype=h.SURFACE_NORMAL)
+    h.add_input(tree, "Color", "NodeSocketColor", "Albedo of the sand", sand.SAND_COLOR)
+    sand_normal.add_grain_inputs(tree, "Sand normal: how far the grains turn the normal")
     h.add_input(tree, "Diffuse Size", "NodeSocketFloat", "Diffuse contrast: fully lit within this share "
                 "of a right angle from the light (0.839: N.L above 0.25)", sand.TOON_SIZE, 0.0, 1.0, "FACTOR")
     h.add_input(tree, "Diffuse Smooth", "NodeSocketFloat", "Diffuse contrast: share of a right angle over "
@@ -64,10 +57,7 @@ def build(tree):
     group_in, group_out = h.group_io(tree)
     inputs = group_in.outputs
 
-    grains = h.add_node(tree, "ShaderNodeGroup", node_tree=h.ensure_group(sand_normal), label="Sand Normal")
-    for name, to in (("Normal", "Normal"), ("Grain Size", "Grain Size"), ("Grain Strength", "Strength"),
-                     ("Seed", "Seed")):
-        h.link(tree, inputs[name], grains.inputs[to])
+    grains = sand_normal.grain_node(tree, inputs)
     normal = grains.outputs["Normal"]
 
     split = h.add_node(tree, "ShaderNodeSeparateXYZ")

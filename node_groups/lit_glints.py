@@ -5,7 +5,7 @@ same grains glint; each cell's noise says whether it can, and its noise colour w
 facet leans (Sandscape Glint Facet). Twin: core.sand.glint_cells and glint_facets.
 """
 
-from . import glint_facet
+from . import glint_facet, glints
 from . import helper as h
 
 NAME = "Sandscape Lit Glints"
@@ -14,19 +14,13 @@ TREE_TYPE = "ShaderNodeTree"
 DESCRIPTION = ("Sparkling sand lit by the sun: object-space cells of Glint Size, a seeded random value "
                "per cell, mirror facets above Threshold that glint only where light reaches them")
 
-INPUTS = {
-    **glint_facet.INPUTS,
-    "Glint Size": ("NodeSocketFloat", "Edge of a grain's cell in the object's own units (scaling the "
-                   "object scales it)", 0.003, 0.0, None, "DISTANCE"),
-    "Seed": ("NodeSocketFloat", "Another seed gives another random set of glinting grains",
-             0.0, None, None, None),
-}
+INPUTS = {**glint_facet.INPUTS, **glints.CELL_INPUTS}
 SOCKETS = ("Base", "Threshold", "Glint Size", "Facing Power", "Color", "Roughness", "Seed", "Normal")
 
 
 def build(tree):
     tree.description = DESCRIPTION
-    glint_facet.add_sockets(tree, SOCKETS, INPUTS)
+    h.add_sockets(tree, SOCKETS, INPUTS, glint_facet.OUTPUTS)
     group_in, group_out = h.group_io(tree)
     inputs = group_in.outputs
     coords = h.add_node(tree, "ShaderNodeTexCoord")

@@ -7,6 +7,7 @@ the normal nudged per grain (Sandscape Sand Normal). Glints come on top, as mirr
 Blender's own Principled BSDF.
 """
 
+from ..core import sand
 from . import helper as h
 from . import sand_normal
 
@@ -15,12 +16,11 @@ VERSION = 1
 TREE_TYPE = "ShaderNodeTree"
 DESCRIPTION = ("Physical sand: rough diffuse, quartz Fresnel (IOR 1.54), a sheen rim and grainy normals, "
                "as a Principled BSDF")
-SAND_COLOR = (0.62, 0.45, 0.27, 1.0)
 
 
 def build(tree):
     tree.description = DESCRIPTION
-    h.add_input(tree, "Color", "NodeSocketColor", "Albedo of the sand", SAND_COLOR)
+    h.add_input(tree, "Color", "NodeSocketColor", "Albedo of the sand", sand.SAND_COLOR)
     h.add_input(tree, "Roughness", "NodeSocketFloat", "Roughness of the grains' sheen of reflection",
                 0.85, 0.0, 1.0, "FACTOR")
     h.add_input(tree, "Diffuse Roughness", "NodeSocketFloat", "0 is Lambert; towards 1 the flatter, "
@@ -29,21 +29,12 @@ def build(tree):
                 1.0, 3.0)
     h.add_input(tree, "Sheen", "NodeSocketFloat", "Weight of the dusty rim seen at grazing angles", 0.3,
                 0.0, 1.0, "FACTOR")
-    h.add_input(tree, "Grain Size", "NodeSocketFloat", "Edge of a grain in the object's own units", 0.002,
-                0.0, None, "DISTANCE")
-    h.add_input(tree, "Grain Strength", "NodeSocketFloat", "How far the grains turn the normal", 0.15,
-                0.0, 1.0, "FACTOR")
-    h.add_input(tree, "Seed", "NodeSocketFloat", "Another seed gives other grains", 0.0)
-    h.add_input(tree, "Normal", "NodeSocketVector", "Surface normal, e.g. the ripples' (unlinked: the "
-                "shading normal)", (0.0, 0.0, 0.0), subtype=h.SURFACE_NORMAL)
+    sand_normal.add_grain_inputs(tree)
     h.add_output(tree, "BSDF", "NodeSocketShader", "The sand")
     h.add_output(tree, "Normal", "NodeSocketVector", "The grainy normal the BSDF uses")
     group_in, group_out = h.group_io(tree)
     inputs = group_in.outputs
-    grains = h.add_node(tree, "ShaderNodeGroup", node_tree=h.ensure_group(sand_normal), label="Sand Normal")
-    for name, to in (("Normal", "Normal"), ("Grain Size", "Grain Size"), ("Grain Strength", "Strength"),
-                     ("Seed", "Seed")):
-        h.link(tree, inputs[name], grains.inputs[to])
+    grains = sand_normal.grain_node(tree, inputs)
     bsdf = h.add_node(tree, "ShaderNodeBsdfPrincipled", label="Sand",
                       inputs={"Sheen Roughness": 0.5, "Sheen Tint": (1.0, 0.95, 0.85, 1.0)})
     for name in ("Color", "Roughness", "Diffuse Roughness", "IOR", "Sheen"):

@@ -5,6 +5,8 @@ Grains are object-space cells of Grain Size; each gets a random direction (its n
 as a vector in -1..1, turned to the normal's side). Twin: core.sand.sand_normal.
 """
 
+import sys
+
 from . import helper as h
 
 NAME = "Sandscape Sand Normal"
@@ -57,3 +59,23 @@ def build(tree):
                                             turned, grain))
     h.frame(tree, "nlerp(Normal, Grain, Strength)", (keep, kept, towards, blend, nlerp))
     h.arrange(tree)
+
+
+def add_grain_inputs(tree, strength_description="How far the grains turn the normal"):
+    """The inputs a look passes on to its Sand Normal: Grain Size, Grain Strength, Seed, Normal."""
+    h.add_input(tree, "Grain Size", "NodeSocketFloat", "Edge of a grain in the object's own units", 0.002,
+                0.0, None, "DISTANCE")
+    h.add_input(tree, "Grain Strength", "NodeSocketFloat", strength_description, 0.15, 0.0, 1.0, "FACTOR")
+    h.add_input(tree, "Seed", "NodeSocketFloat", "Another seed gives other grains", 0.0)
+    h.add_input(tree, "Normal", "NodeSocketVector", "Surface normal, e.g. the ripples' (unlinked: the "
+                "shading normal)", (0.0, 0.0, 0.0), subtype=h.SURFACE_NORMAL)
+
+
+def grain_node(tree, inputs):
+    """A Sand Normal group node fed by the look's add_grain_inputs."""
+    this = sys.modules[__name__]
+    grains = h.add_node(tree, "ShaderNodeGroup", node_tree=h.ensure_group(this), label="Sand Normal")
+    for name, to in (("Normal", "Normal"), ("Grain Size", "Grain Size"), ("Grain Strength", "Strength"),
+                     ("Seed", "Seed")):
+        h.link(tree, inputs[name], grains.inputs[to])
+    return grains

@@ -7,9 +7,6 @@ point on the ground plane, projected into B, and kept when B glints there. Pixel
 
 import math
 
-import bpy
-import numpy as np
-
 from devtools import readback, scenes
 
 WIDTH, HEIGHT = 128, 96
@@ -49,23 +46,8 @@ def kept_fraction(material):
     scenes.sharp_pixels()
     ground_with(material)
     cam = scenes.camera("PERSP", location=(0.0, -5.0, 3.0), rotation=(math.radians(59), 0.0, 0.0))
-    a = readback.render()[..., 0] > 0.5
-    origins, directions = scenes.camera_rays(cam, WIDTH, HEIGHT)
-    cam.location.x += 0.05
-    cam.rotation_euler.z -= math.radians(1.0)
-    bpy.context.view_layer.update()
-    b = readback.render()[..., 0] > 0.5
-
-    t = -origins[..., 2] / directions[..., 2]
-    points = origins + t[..., None] * directions
-    col, row = scenes.project(cam, points, WIDTH, HEIGHT)
-    col, row = np.floor(col).astype(int), np.floor(row).astype(int)
-    inside = a & (col >= 1) & (col < WIDTH - 1) & (row >= 1) & (row < HEIGHT - 1)
-    col, row = col[inside], row[inside]
-    window = np.stack([b[row + dy, col + dx] for dy in (-1, 0, 1) for dx in (-1, 0, 1)])
-    settled = window.all(axis=0) | ~window.any(axis=0)
-    assert settled.sum() > 200, "too few glint pixels to judge"
-    return b[row, col][settled].mean()
+    return scenes.glints_kept_after_camera_move(cam, lambda: readback.render()[..., 0] > 0.5, WIDTH, HEIGHT,
+                                                enough=200)
 
 
 def test_object_space_glints_stay_on_the_surface(glints_group):

@@ -91,9 +91,9 @@ def glint_pixels(pixels):
     return brightness > 4.0 * np.median(brightness)
 
 
-def test_lit_glints_only_where_the_sun_reaches(sandscape):
-    glinting_ground(sandscape, threshold=0.7, glint_size=0.15, facing_power=64.0)
-    # A roof high above the left half: its shadow covers x < 0.
+def glints_half_in_shadow():
+    """Glint pixels of the ground seen from the sun's mirror direction, with a roof high above the
+    left half (hidden from the camera) casting its shadow over x < 0."""
     bpy.ops.mesh.primitive_plane_add(size=1, location=(-10.0, 0.0, 6.0))
     roof = bpy.context.active_object
     roof.scale = (20.0, 40.0, 1.0)
@@ -101,7 +101,12 @@ def test_lit_glints_only_where_the_sun_reaches(sandscape):
     readback.cycles_scene(resolution=(96, 96), samples=4)
     scenes.camera("ORTHO", location=(0.0, -10.0, 10.0), rotation=(math.radians(45), 0.0, 0.0),
                   ortho_scale=5.0)
-    glints = glint_pixels(readback.render())
+    return glint_pixels(readback.render())
+
+
+def test_lit_glints_only_where_the_sun_reaches(sandscape):
+    glinting_ground(sandscape, threshold=0.7, glint_size=0.15, facing_power=64.0)
+    glints = glints_half_in_shadow()
     sunlit, shaded = glints[:, 56:].mean(), glints[:, :40].mean()
     print(f"lit glints: {sunlit:.3%} of sunlit pixels, {shaded:.3%} of shaded")
     assert sunlit > 0.01
@@ -112,14 +117,7 @@ def test_emission_glints_shine_in_the_shade_too(sandscape):
     """The same measure on emission glints: they sparkle in shadow, so the test can tell."""
     glinting_ground(sandscape, glints="EMISSION", threshold=0.7, glint_size=0.15, facing_power=0.0,
                     strength=600.0)
-    bpy.ops.mesh.primitive_plane_add(size=1, location=(-10.0, 0.0, 6.0))
-    roof = bpy.context.active_object
-    roof.scale = (20.0, 40.0, 1.0)
-    roof.visible_camera = False
-    readback.cycles_scene(resolution=(96, 96), samples=4)
-    scenes.camera("ORTHO", location=(0.0, -10.0, 10.0), rotation=(math.radians(45), 0.0, 0.0),
-                  ortho_scale=5.0)
-    glints = glint_pixels(readback.render())
+    glints = glints_half_in_shadow()
     assert glints[:, :40].mean() > 0.5 * glints[:, 56:].mean()
 
 
@@ -131,21 +129,7 @@ def test_lit_glints_stay_on_the_sand_when_the_camera_moves(sandscape):
     readback.cycles_scene(resolution=(width, height), samples=4)
     scenes.sharp_pixels()
     cam = scenes.camera("PERSP", location=(0.0, -5.0, 5.0), rotation=(math.radians(45), 0.0, 0.0))
-    a = glint_pixels(readback.render())
-    origins, directions = scenes.camera_rays(cam, width, height)
-    cam.location.x += 0.05
-    cam.rotation_euler.z -= math.radians(1.0)
-    bpy.context.view_layer.update()
-    b = glint_pixels(readback.render())
-    t = -origins[..., 2] / directions[..., 2]
-    points = origins + t[..., None] * directions
-    col, row = scenes.project(cam, points, width, height)
-    col, row = np.floor(col).astype(int), np.floor(row).astype(int)
-    inside = a & (col >= 1) & (col < width - 1) & (row >= 1) & (row < height - 1)
-    col, row = col[inside], row[inside]
-    window = np.stack([b[row + dy, col + dx] for dy in (-1, 0, 1) for dx in (-1, 0, 1)])
-    settled = window.all(axis=0) | ~window.any(axis=0)
-    assert settled.sum() > 100, "too few glint pixels to judge"
-    kept = b[row, col][settled].mean()
+    kept = scenes.glints_kept_after_camera_move(cam, lambda: glint_pixels(readback.render()), width, height,
+                                                enough=100)
     print(f"lit glints kept after the camera move: {kept:.1%}")
     assert kept >= 0.95
