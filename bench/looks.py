@@ -3,9 +3,9 @@
 The demo's dunes, walker and prints under its low sun, without the dusty air and post effects
 (their noise would swamp the sand's), at the demo's frame:
 
-1. Render time at equal samples (median of 3) of the bare Principled BSDF (sand colour, nothing
-   else), PHYSICAL and JOURNEY with lit glints, each without glints and without ripples, and
-   PHYSICAL with the emission glints.
+1. Render time at equal samples (median of ROUNDS, taken round robin) of the bare Principled
+   BSDF (sand colour, nothing else), PHYSICAL and JOURNEY with lit glints, each without glints
+   and without ripples, and PHYSICAL with the emission glints.
 2. Samples each look needs for glint RMSE < 0.01. Glints are sub-pixel highlights far brighter
    than the sand, so a reference render would need tens of thousands of samples to be quieter
    than that; instead the RMSE of an N-sample render against the converged image is estimated
@@ -32,6 +32,7 @@ sys.path.insert(0, str(REPO))
 from devtools import results, session  # noqa: E402
 
 TARGET_RMSE = 0.01
+ROUNDS = 5
 MASK_SPP = 512
 FRAME = 120
 GLINT_DIFFERENCE = 0.05  # 4.5 sigma of two MASK_SPP renders' difference without glints
@@ -108,13 +109,17 @@ def main(argv=None):
                 ("JOURNEY, no glints", "JOURNEY", "LIT", no_glints),
                 ("PHYSICAL, lit glints, no ripples", "PHYSICAL", "LIT", glint_values, False),
                 ("JOURNEY, lit glints, no ripples", "JOURNEY", "LIT", glint_values, False)]
-    timings = {}
+    # Round robin, so that a machine slowing down or speeding up weighs on every variant alike.
+    runs = {label: [] for label, *_ in variants}
+    for _ in range(ROUNDS):
+        for label, look, glints, values, *waves in variants:
+            use(look, glints, values, *waves)
+            runs[label].append(render(timing_spp, timing_size)[0])
+    timings = {label: statistics.median(times) for label, times in runs.items()}
     for label, look, glints, values, *waves in variants:
-        use(look, glints, values, *waves)
-        runs = [render(timing_spp, timing_size) for _ in range(3)]
-        timings[label] = statistics.median(r[0] for r in runs)
-        print(f"{label}: {timings[label]:.3f} s")
+        print(f"{label}: {timings[label]:.3f} s (of {', '.join(f'{t:.2f}' for t in runs[label])})")
         if values is glint_values and not waves:
+            use(look, glints, values)
             scene.render.image_settings.file_format = "PNG"
             scene.render.filepath = str(out / f"bench-look-{look.lower()}-{glints.lower()}.png")
             bpy.ops.render.render(write_still=True)
