@@ -20,11 +20,11 @@ TREE_KEY = "sandscape_compositor"
 TERRAIN_KEY = "sandscape_terrain"  # on footprint data: the terrain it belongs to
 
 # Kinds of objects
-SUN, DUST_VOLUME = "sun", "dust_volume"
+SUN, DUST_VOLUME, CLOUDS = "sun", "dust_volume", "clouds"
 WALKER, WALK_PATH = "walker", "walk_path"
 FOOTPRINTS, PATCH, PRINT_FRAME = "footprints", "footprint_patch", "print_frame"
 # Kinds of materials, images, worlds
-SAND, DUST = "sand", "dust"
+SAND, DUST, CLOUD_MATERIAL = "sand", "dust", "clouds"
 GLINT_NOISE, PRINT_MAP = "glint_noise", "print_map"
 SKY = "sky"
 

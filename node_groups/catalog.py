@@ -6,6 +6,7 @@ groups that only Sandscape itself wires up). The editor follows from the builder
 """
 
 from . import (
+    cloud_density,
     dust_field,
     dust_volume,
     footprint_height,
@@ -21,6 +22,7 @@ from . import (
     region_cut,
     ripples,
     sand_normal,
+    weather_map,
 )
 
 GOD_RAYS = god_rays.Builder(god_rays.DEFAULT_SAMPLES)
@@ -37,6 +39,8 @@ GROUPS = (
     (footprint_height, "Footprints"),
     (dust_volume, "Atmosphere"),
     (dust_field, "Atmosphere"),
+    (cloud_density, "Clouds"),
+    (weather_map, "Clouds"),
     (gated_blur, "Post Effects"),
     (GOD_RAYS, "Post Effects"),
     (region_cut, None),

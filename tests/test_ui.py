@@ -153,14 +153,15 @@ def test_shift_a_offers_sandscape(sandscape):
     layout = RecordingLayout()
     bpy.types.VIEW3D_MT_sandscape_add.draw(types.SimpleNamespace(layout=layout), bpy.context)
     assert [c[1] for c in layout.calls] == ["sandscape.add_walker", "sandscape.add_atmosphere",
-                                           "sandscape.build_demo_scene"]
+                                           "sandscape.add_clouds", "sandscape.build_demo_scene"]
 
 
 @pytest.mark.parametrize("tree_type, expected", [
     ("ShaderNodeTree", {"Sandscape Glints", "Sandscape Glint Shade", "Sandscape Footprint Height",
                         "Sandscape Dust Volume", "Sandscape Dust Field", "Sandscape Physical Sand",
                         "Sandscape Journey Sand", "Sandscape Lit Glints", "Sandscape Glint Facet",
-                        "Sandscape Sand Normal", "Sandscape Ripples"}),
+                        "Sandscape Sand Normal", "Sandscape Ripples", "Sandscape Cloud Density",
+                        "Sandscape Weather Map"}),
     ("CompositorNodeTree", {"Sandscape Gated Blur", "Sandscape God Rays 32"}),
     ("GeometryNodeTree", set()),
 ])

@@ -10,6 +10,7 @@ from ..node_groups import catalog
 SCENE_ENTRIES = (
     ("sandscape.add_walker", "Walker", "ARMATURE_DATA"),
     ("sandscape.add_atmosphere", "Atmosphere", "LIGHT_SUN"),
+    ("sandscape.add_clouds", "Clouds", "OUTLINER_DATA_VOLUME"),
     ("sandscape.build_demo_scene", "Demo Scene", "WORLD"),
 )
 

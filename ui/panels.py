@@ -1,5 +1,5 @@
 """The Sandscape tab in the 3D viewport sidebar: a Sandscape panel with sub-panels for Sand,
-Footprints, Atmosphere and Render. Buttons are live only when their operator's poll() allows."""
+Footprints, Atmosphere, Clouds and Render. Buttons are live only when their operator's poll() allows."""
 
 import bpy
 
@@ -118,6 +118,31 @@ class SANDSCAPE_PT_atmosphere(SandscapeSubPanel, bpy.types.Panel):
         layout.operator("sandscape.add_post_effects", icon="NODE_COMPOSITING")
 
 
+CLOUD_SECTIONS = (
+    ("Layer", ("coverage", "cloud_type", "seed", "base", "thickness", "precipitation", "density")),
+    ("Shape", ("shape_scale", "detail_scale", "erosion", "curl", "skew")),
+    ("Light", ("phase", "forward", "back", "back_weight", "droplet_size", "step", "reach")),
+)
+
+
+class SANDSCAPE_PT_clouds(SandscapeSubPanel, bpy.types.Panel):
+    bl_label = "Clouds"
+    bl_idname = "SANDSCAPE_PT_clouds"
+
+    def draw(self, context):
+        layout = self.layout
+        settings = context.scene.sandscape_clouds
+        layout.prop(settings, "weather_source")
+        if settings.weather_source == "IMAGE":
+            layout.template_ID(settings, "weather_image", open="image.open")
+            layout.prop(settings, "map_size")
+        else:
+            layout.prop(settings, "map_scale")
+        _sections(layout, settings, CLOUD_SECTIONS)
+        layout.label(text="Wind: the atmosphere's (dust, ripples, clouds)", icon="INFO")
+        layout.operator("sandscape.add_clouds", icon="OUTLINER_DATA_VOLUME")
+
+
 class SANDSCAPE_PT_render(SandscapeSubPanel, bpy.types.Panel):
     bl_label = "Render"
     bl_idname = "SANDSCAPE_PT_render"
@@ -143,4 +168,4 @@ def _sections(layout, settings, sections):
 
 
 classes = (SANDSCAPE_PT_main, SANDSCAPE_PT_sand, SANDSCAPE_PT_footprints, SANDSCAPE_PT_atmosphere,
-           SANDSCAPE_PT_render)
+           SANDSCAPE_PT_clouds, SANDSCAPE_PT_render)

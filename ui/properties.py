@@ -21,6 +21,7 @@ from bpy.props import (
     FloatVectorProperty,
     IntProperty,
     PointerProperty,
+    StringProperty,
 )
 
 from ..blender import units
@@ -145,6 +146,95 @@ class SandscapeAtmosphereSettings(bpy.types.PropertyGroup):
     margin: length("margin_m", "Margin", 2.0, "How far the dust box reaches beyond the scene", 100.0)
 
 
+CLOUD_TYPES = (("STRATUS", "Stratus", "Low, flat sheets"),
+               ("CUMULUS", "Cumulus", "Heaped clouds in the lower half of the layer"),
+               ("CUMULONIMBUS", "Cumulonimbus", "Towers through the whole layer"),
+               ("MIXED", "Mixed", "The type varies over the sky (the weather map's own type)"))
+
+
+def cloud_fields(for_operator):
+    """The cloud settings, defined once: scene.sandscape_clouds stores lengths in metres (read in
+    scene units); the operator takes every one of them in scene units, and a value it is not
+    given comes from the scene's settings."""
+    skip = {"options": {"SKIP_SAVE"}} if for_operator else {}
+
+    def distance(key, name, metres, description, soft_max, soft_min=0.0):
+        if for_operator:
+            return FloatProperty(name=name, default=metres, soft_min=soft_min, soft_max=soft_max,
+                                 subtype="DISTANCE", unit="LENGTH", description=description, **skip)
+        return length(key, name, metres, description, soft_max, soft_min)
+
+    fields = {
+        "coverage": FloatProperty(name="Coverage", default=0.4, soft_min=0.0, soft_max=1.0, subtype="FACTOR",
+                                  description="Share of the sky under cloud, seen straight up", **skip),
+        "cloud_type": EnumProperty(name="Cloud Type", items=CLOUD_TYPES, default="CUMULUS", **skip),
+        "seed": IntProperty(name="Seed", default=0, min=0, description="Another seed, another sky", **skip),
+        "base": distance("base_m", "Base Altitude", 1500.0, "Height of the layer's bottom above the "
+                         "scene's origin", 10000.0),
+        "thickness": distance("thickness_m", "Thickness", 2500.0, "Height of the layer", 8000.0),
+        "precipitation": FloatProperty(name="Precipitation", default=0.0, soft_min=0.0, soft_max=1.0,
+                                       subtype="FACTOR", description="Rain in the clouds: denser, darker",
+                                       **skip),
+        "density": FloatProperty(name="Density", default=0.02, soft_min=0.0, soft_max=0.2, precision=4,
+                                 description="Extinction of the densest cloud per metre (fair-weather "
+                                 "cumulus: 0.01 to 0.1)", **skip),
+        "map_scale": distance("map_scale_m", "Weather Scale", 6000.0, "Size of the weather map's features",
+                              50000.0),
+        "shape_scale": distance("shape_scale_m", "Shape Scale", 1200.0, "Size of the cloud shapes", 10000.0),
+        "detail_scale": distance("detail_scale_m", "Detail Scale", 200.0, "Size of the eroded edge detail",
+                                 2000.0),
+        "erosion": FloatProperty(name="Erosion", default=0.35, soft_min=0.0, soft_max=0.9, subtype="FACTOR",
+                                 description="How much the detail eats into the cloud edges", **skip),
+        "curl": FloatProperty(name="Curl", default=0.5, soft_min=0.0, soft_max=2.0,
+                              description="Swirl of the edge detail at the top of the layer", **skip),
+        "skew": distance("skew_m", "Skew", 300.0, "How far the tops lean downwind", 2000.0, -2000.0),
+        "reach": distance("reach_m", "Reach", 20000.0, "How far from the camera the layer extends", 100000.0),
+        "weather_source": EnumProperty(
+            name="Weather Map", default="PROCEDURAL",
+            items=(("PROCEDURAL", "Procedural", "A seeded noise over the ground, calibrated to Coverage"),
+                   ("IMAGE", "Image", "An image you paint: red coverage, green precipitation, blue type")),
+            **skip),
+        "map_size": distance("map_size_m", "Map Size", 20000.0, "Ground covered by the weather image "
+                             "(a square centred on the origin)", 100000.0),
+        "phase": EnumProperty(
+            name="Phase", default="DUAL_LOBE",
+            items=(("DUAL_LOBE", "Dual-Lobe", "Two Henyey-Greenstein lobes (seed 003): a forward glow and "
+                    "a softer back lobe"),
+                   ("MIE", "Mie", "Blender's Mie phase for water droplets of Droplet Size")), **skip),
+        "forward": FloatProperty(name="Forward Lobe", default=0.8, soft_min=0.0, soft_max=0.95,
+                                 description="Henyey-Greenstein g of the forward lobe", **skip),
+        "back": FloatProperty(name="Back Lobe", default=-0.3, soft_min=-0.95, soft_max=0.0,
+                              description="Henyey-Greenstein g of the back lobe", **skip),
+        "back_weight": FloatProperty(name="Back Share", default=0.3, soft_min=0.0, soft_max=1.0,
+                                     subtype="FACTOR", description="Share of the back lobe", **skip),
+        "droplet_size": FloatProperty(name="Droplet Size", default=20.0, soft_min=5.0, soft_max=50.0,
+                                      description="Water droplet diameter in micrometres, for the Mie phase",
+                                      **skip),
+        "step": distance("step_m", "Step", 100.0, "Ray-marching step through the clouds: smaller is "
+                         "slower and more exact", 1000.0, 1.0),
+    }
+    if for_operator:
+        fields["weather_image"] = StringProperty(name="Weather Image", description="Image for the Image "
+                                                 "weather map", options={"SKIP_SAVE"})
+    else:
+        fields["weather_image"] = PointerProperty(name="Weather Image", type=bpy.types.Image,
+                                                  description="Red coverage, green precipitation, blue type")
+    return fields
+
+
+CLOUD_LIMITS = {
+    "coverage": (0.0, 1.0), "seed": (0, 2**24), "base": (-1e4, 1e5), "thickness": (1e-3, 1e5),
+    "precipitation": (0.0, 1.0), "density": (0.0, 1e3), "map_scale": (1.0, 1e7), "shape_scale": (1e-2, 1e6),
+    "detail_scale": (1e-2, 1e6), "erosion": (0.0, 0.99), "curl": (0.0, 10.0), "skew": (-1e5, 1e5),
+    "reach": (1.0, 1e6), "map_size": (1.0, 1e7), "forward": (-0.99, 0.99), "back": (-0.99, 0.99),
+    "back_weight": (0.0, 1.0), "droplet_size": (0.01, 50.0), "step": (1e-3, 1e5),
+}
+
+SandscapeCloudSettings = type("SandscapeCloudSettings", (bpy.types.PropertyGroup,),
+                              {"__annotations__": cloud_fields(False), "LIMITS": CLOUD_LIMITS,
+                               "__doc__": "The cloud layer's settings (scene.sandscape_clouds)"})
+
+
 class SandscapePostSettings(bpy.types.PropertyGroup):
     LIMITS = {
         "blur_threshold": (0.0, 1e6), "samples": (1, 1024), "ray_density": (0.0, 1.0),
@@ -174,16 +264,19 @@ class SandscapePostSettings(bpy.types.PropertyGroup):
                         description="How far outside the frame (in frame widths) the rays fade out")
 
 
-classes = (SandscapeFootprintSettings, SandscapeAtmosphereSettings, SandscapePostSettings)
+classes = (SandscapeFootprintSettings, SandscapeAtmosphereSettings, SandscapeCloudSettings,
+           SandscapePostSettings)
 
 
 def register():
     bpy.types.Scene.sandscape_footprints = PointerProperty(type=SandscapeFootprintSettings)
     bpy.types.Scene.sandscape_atmosphere = PointerProperty(type=SandscapeAtmosphereSettings)
     bpy.types.Scene.sandscape_post = PointerProperty(type=SandscapePostSettings)
+    bpy.types.Scene.sandscape_clouds = PointerProperty(type=SandscapeCloudSettings)
 
 
 def unregister():
+    del bpy.types.Scene.sandscape_clouds
     del bpy.types.Scene.sandscape_post
     del bpy.types.Scene.sandscape_atmosphere
     del bpy.types.Scene.sandscape_footprints

@@ -1,0 +1,73 @@
+"""The cloud operator: Add (or Update) Clouds from scene.sandscape_clouds or its own arguments."""
+
+import bpy
+
+from ..blender import clouds, ownership
+from ..ui.properties import CLOUD_LIMITS, cloud_fields
+from .base import SandscapeOperator, editable_problem, has_camera, value_problem
+
+FIELDS = cloud_fields(True)
+
+
+class SANDSCAPE_OT_add_clouds(SandscapeOperator, bpy.types.Operator):
+    """Add or update a cloud layer over what the scene camera sees: a weather map, cloud types, wind
+    and real volume scattering"""
+
+    bl_idname = "sandscape.add_clouds"
+    bl_label = "Add Clouds"
+    POLL = ((has_camera, "Add a camera: the cloud layer spans what the scene camera sees"),)
+    LIMITS = CLOUD_LIMITS
+    __annotations__ = dict(FIELDS)
+
+    def settings(self, context):
+        """Every field: the value passed, else the scene's setting (scene units)."""
+        stored = context.scene.sandscape_clouds
+        values = {}
+        for name in FIELDS:
+            if self.properties.is_property_set(name):
+                values[name] = getattr(self, name)
+            elif name == "weather_image":
+                values[name] = stored.weather_image.name if stored.weather_image else ""
+            else:
+                values[name] = getattr(stored, name)
+            setattr(self, name, values[name])
+        return values
+
+    def problem(self, context, values):
+        problem = value_problem(self.properties, self.LIMITS, context.scene)
+        if problem:
+            return problem
+        if values["weather_source"] == "IMAGE":
+            if not values["weather_image"]:
+                return "Choose a weather image (red coverage, green precipitation, blue type)"
+            if values["weather_image"] not in bpy.data.images:
+                return f"No image named '{values['weather_image']}'"
+            image = bpy.data.images[values["weather_image"]]
+            if image.size[0] == 0 or image.size[1] == 0:
+                return f"Image '{image.name}' has no pixels"
+        return editable_problem(ownership.scene_object(context.scene, ownership.CLOUDS))
+
+    def execute(self, context):
+        scene = context.scene
+        values = self.settings(context)
+        problem = self.problem(context, values)
+        if problem:
+            return self.fail(problem)
+        stored = scene.sandscape_clouds
+        for name, value in values.items():  # the scene remembers what was used
+            if name == "weather_image":
+                stored.weather_image = bpy.data.images.get(value) if value else None
+            else:
+                setattr(stored, name, value)
+        image = bpy.data.images[values["weather_image"]] if values["weather_source"] == "IMAGE" else None
+        done = clouds.apply(scene, values, image)
+        if done["layer"] is None:
+            self.report({"INFO"}, "No cloud where the camera looks (coverage 0, or the layer is out of "
+                        "view): no cloud layer")
+            return {"FINISHED"}
+        self.report({"INFO"}, f"Cloud layer '{done['layer'].name}': {done['cells']} of {done['of']} columns "
+                    f"hold cloud, {values['cloud_type'].lower()}, coverage {values['coverage']:.2f}")
+        return {"FINISHED"}
+
+
+classes = (SANDSCAPE_OT_add_clouds,)

@@ -1,0 +1,261 @@
+"""The cloud layer as an artist gets it from Add Clouds: coverage that means what it says, the
+height profile of the chosen type, sun transmittance through a uniform layer, the layer
+spanning what the camera sees and holding columns only where the weather map has cloud, and
+bad input refused.
+"""
+
+import math
+
+import bpy
+import numpy as np
+import pytest
+
+from core import clouds as twin
+from devtools import operators, readback, scenes
+
+COVERAGE_TOLERANCE = 0.05  # the issue's
+UP_SIZE = 40000.0  # metres of sky in the straight-up view
+
+
+def white_sky():
+    world = bpy.data.worlds.new("White")
+    world.node_tree.nodes["Background"].inputs["Color"].default_value = (1.0, 1.0, 1.0, 1.0)
+    world.node_tree.nodes["Background"].inputs["Strength"].default_value = 1.0
+    bpy.context.scene.world = world
+
+
+def cloud_layer(scene):
+    return next(o for o in scene.objects if o.get("sandscape_object") == "clouds")
+
+
+def absorbing_only(layer):
+    """The layer's density as pure absorption: a camera in front of a white sky sees T."""
+    tree = layer.active_material.node_tree
+    density = tree.nodes["Sandscape Cloud Density"]
+    absorb = tree.nodes.new("ShaderNodeVolumeAbsorption")
+    absorb.inputs["Color"].default_value = (0.0, 0.0, 0.0, 1.0)
+    tree.links.new(density.outputs["Density"], absorb.inputs["Density"])
+    tree.links.new(absorb.outputs[0], tree.nodes["Sandscape Output"].inputs["Volume"])
+
+
+def transmittance_up(resolution=96, **values):
+    """Render T seen straight up through a layer made by Add Clouds (an ortho camera at the ground)."""
+    scene = bpy.context.scene
+    scenes.camera("ORTHO", location=(0.0, 0.0, 0.0), rotation=(math.pi, 0.0, 0.0), ortho_scale=UP_SIZE)
+    scene.camera.data.clip_end = 1e6
+    white_sky()
+    readback.cycles_scene(scene, (resolution, resolution), samples=1)  # the frame the layer spans
+    assert bpy.ops.sandscape.add_clouds(reach=UP_SIZE, **values) == {"FINISHED"}
+    layer = cloud_layer(scene)
+    absorbing_only(layer)
+    scene.cycles.pixel_filter_type = "BOX"
+    scene.cycles.filter_width = 0.01
+    return readback.render(scene)[..., 0]
+
+
+@pytest.mark.parametrize("seed", [0, 7])
+def test_coverage_is_the_share_of_sky_under_cloud(seed):
+    covered = {}
+    for coverage in (0.2, 0.5, 0.8):
+        bpy.ops.wm.read_homefile(use_empty=True)
+        t = transmittance_up(coverage=coverage, seed=seed, map_scale=2000.0)
+        assert np.isfinite(t).all()
+        covered[coverage] = float((t < 0.5).mean())
+    print(f"seed {seed}: covered share {covered}")
+    for coverage, share in covered.items():
+        assert share == pytest.approx(coverage, abs=COVERAGE_TOLERANCE), covered
+
+
+def test_height_profile_follows_the_type(sandscape):
+    """Mean density across a vertical slice of the layer, row by row, against the type's gradient."""
+    group = sandscape.node_groups.helper.ensure_group(sandscape.node_groups.cloud_density)
+    base, thickness, rows = 1500.0, 2500.0, 64
+    for name in ("STRATUS", "CUMULUS", "CUMULONIMBUS"):
+        material = scenes.group_material(group, {"Base": base, "Thickness": thickness, "Coverage": 1.0,
+                                                 "Type": twin.TYPE_VALUES[name], "Density": 1.0}, "Density")
+        plane = readback.uv_plane(1.0)
+        plane.rotation_euler = (math.pi / 2, 0.0, 0.0)  # x across, z up
+        plane.scale = (20000.0, thickness, 1.0)
+        plane.location = (0.0, 0.0, base + thickness / 2)
+        bpy.context.view_layer.update()
+        plane.data.materials.append(material)
+        slice_ = readback.bake_emit(plane, material, rows)[..., 0].astype(np.float64)
+        h = (np.arange(rows) + 0.5) / rows
+        profile = slice_.mean(axis=1)
+        correlation = np.corrcoef(profile, twin.height_gradient(h, twin.TYPE_VALUES[name]))[0, 1]
+        print(f"{name}: correlation {correlation:.4f}")
+        assert correlation >= 0.98, name
+        bpy.data.objects.remove(plane)
+
+
+def sun_scene(elevation):
+    """Ground lit by a sun of no angle under a black sky, seen from above; no volume bounces."""
+    scene = bpy.context.scene
+    readback.cycles_scene(scene, (16, 16), samples=4)
+    scene.cycles.volume_bounces = 0
+    scene.cycles.max_bounces = 0
+    bpy.ops.mesh.primitive_plane_add(size=400.0)
+    scenes.camera("ORTHO", location=(0.0, 0.0, 100.0), ortho_scale=100.0)
+    world = bpy.data.worlds.new("Black")
+    world.node_tree.nodes["Background"].inputs["Strength"].default_value = 0.0
+    scene.world = world
+    lamp = bpy.data.objects.new("Sun", bpy.data.lights.new("Sun", "SUN"))
+    lamp.data.angle = 0.0
+    lamp.data.energy = 1.0
+    lamp.rotation_euler = (math.pi / 2 - elevation, 0.0, math.radians(30.0))
+    scene.collection.objects.link(lamp)
+    return scene
+
+
+@pytest.mark.parametrize("elevation_degrees", [45.0, 6.0])
+def test_sun_transmittance_through_a_uniform_layer(elevation_degrees):
+    """Add Clouds' layer (it must reach over the ground the camera sees, along the sun) with a
+    uniform density: the ground's light falls by exp(-sigma d / sin e) within 0.5 %."""
+    elevation = math.radians(elevation_degrees)
+    scene = sun_scene(elevation)
+    lit = readback.render(scene)[..., 0].mean()
+    base, thickness, sigma = 1000.0, 1000.0, 1e-4
+    assert bpy.ops.sandscape.add_clouds(coverage=1.0, base=base, thickness=thickness) == {"FINISHED"}
+    tree = cloud_layer(scene).active_material.node_tree
+    position = tree.nodes.new("ShaderNodeNewGeometry")
+    split = tree.nodes.new("ShaderNodeSeparateXYZ")
+    varying = tree.nodes.new("ShaderNodeMath")  # sigma (1 + 1e-9 z): uniform, yet ray-marched
+    varying.operation = "MULTIPLY_ADD"
+    varying.inputs[1].default_value = sigma * 1e-9
+    varying.inputs[2].default_value = sigma
+    absorb = tree.nodes.new("ShaderNodeVolumeAbsorption")
+    absorb.inputs["Color"].default_value = (0.0, 0.0, 0.0, 1.0)  # absorption = density x (1 - color)
+    tree.links.new(position.outputs["Position"], split.inputs[0])
+    tree.links.new(split.outputs["Z"], varying.inputs[0])
+    tree.links.new(varying.outputs[0], absorb.inputs["Density"])
+    tree.links.new(absorb.outputs[0], tree.nodes["Sandscape Output"].inputs["Volume"])
+    shaded = readback.render(scene)[..., 0].mean()
+    expected = math.exp(-sigma * thickness / math.sin(elevation))
+    print(f"{elevation_degrees} degrees: T {shaded / lit:.5f}, exp(-sigma d) {expected:.5f}")
+    assert shaded / lit == pytest.approx(expected, rel=0.005)
+
+
+def test_layer_spans_the_view_and_holds_cloud_only_where_the_map_has_it():
+    """Perspective camera at the ground looking up at 20 degrees: the layer covers the frame's
+    rays through the slab, its columns hold every point where the twin's weather map has cloud,
+    and it leaves out columns that have none. Running again updates, never duplicates."""
+    scene = bpy.context.scene
+    scenes.camera("PERSP", location=(100.0, -50.0, 2.0), rotation=(math.radians(110.0), 0.0, 0.4), lens=35.0)
+    scene.camera.data.clip_end = 1e6
+    assert bpy.ops.sandscape.add_clouds(coverage=0.35, seed=3) == {"FINISHED"}
+    assert bpy.ops.sandscape.add_clouds(coverage=0.35, seed=3) == {"FINISHED"}
+    layers = [o for o in scene.objects if o.get("sandscape_object") == "clouds"]
+    assert len(layers) == 1 and len([m for m in bpy.data.materials if m.get("sandscape_material")]) == 1
+    layer = layers[0]
+    settings = scene.sandscape_clouds
+    base, top = settings.base, settings.base + settings.thickness
+    verts = np.array([v.co[:] for v in layer.data.vertices]) @ np.array(layer.matrix_world)[:3, :3].T
+    assert verts[:, 2].min() == pytest.approx(base) and verts[:, 2].max() == pytest.approx(top)
+    # Points on rays through the frame, inside the slab and the reach, where the map has cloud:
+    # each must be inside a column (ray cast upwards from below the layer hits its bottom).
+    from mathutils import Vector
+    camera = scene.camera
+    frame = [camera.matrix_world @ v for v in camera.data.view_frame(scene=scene)]
+    origin = camera.matrix_world.translation
+    rng = np.random.default_rng(0)
+    p = {"coverage": 0.35, "map_scale": settings.map_scale, "seed": 3}
+    inside = outside_cloudy = 0
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    for _ in range(400):
+        u, v = rng.uniform(0, 1, 2)
+        corner = frame[0].lerp(frame[1], u).lerp(frame[3].lerp(frame[2], u), v)
+        direction = (corner - origin).normalized()
+        if direction.z <= 0:
+            continue
+        t = (rng.uniform(base, top) - origin.z) / direction.z
+        point = origin + direction * t
+        if (Vector(point[:2]) - origin.to_2d()).length > 0.7 * settings.reach:
+            continue
+        cover = twin.map_coverage(twin.weather_noise(np.array(point[:2]), p["map_scale"], 3), 0.35)
+        hit, *_ = scene.ray_cast(depsgraph, Vector((point.x, point.y, base - 1.0)), Vector((0, 0, 1)),
+                                 distance=2.0)
+        if cover > 0:
+            inside += 1
+            outside_cloudy += not hit
+    assert inside > 50 and outside_cloudy == 0
+    # Skipped sky: some columns are left out where the map is clear.
+    cells = len(layer.data.polygons)
+    assert 0 < cells
+    area = np.ptp(verts[:, 0]) * np.ptp(verts[:, 1])
+    tops = [f for f in layer.data.polygons if f.normal.z > 0.5]
+    covered = sum(f.area for f in tops)
+    assert covered < 0.9 * area, f"{covered / area:.2f} of the box holds columns"
+
+
+BAD_INPUT = [
+    ({"coverage": math.nan}, "Coverage"),
+    ({"coverage": 1.5}, "Coverage"),
+    ({"thickness": 0.0}, "Thickness"),
+    ({"thickness": math.inf}, "Thickness"),
+    ({"base": math.nan}, "Base Altitude"),
+    ({"density": -1.0}, "Density"),
+    ({"step": 0.0}, "Step"),
+    ({"reach": math.inf}, "Reach"),
+    ({"erosion": 1.0}, "Erosion"),
+    ({"forward": 1.0}, "Forward Lobe"),
+    ({"weather_source": "IMAGE"}, "Choose a weather image"),
+    ({"weather_source": "IMAGE", "weather_image": "no such image"}, "No image named"),
+]
+
+
+@pytest.mark.parametrize("props,message", BAD_INPUT)
+def test_bad_input_is_refused_and_changes_nothing(props, message):
+    scenes.camera("PERSP", location=(0.0, 0.0, 2.0), rotation=(math.radians(80.0), 0.0, 0.0))
+    assert bpy.ops.sandscape.add_clouds() == {"FINISHED"}  # a layer there already must survive
+    before = readback.data_snapshot()
+    settings = dict(bpy.context.scene.sandscape_clouds.items())
+    with pytest.raises(RuntimeError, match=message):
+        bpy.ops.sandscape.add_clouds(**props)
+    assert readback.data_snapshot() == before
+    assert dict(bpy.context.scene.sandscape_clouds.items()) == settings
+    result, reports = operators.run_execute("sandscape.add_clouds", **props)
+    assert result == {"CANCELLED"} and reports[0][0] == {"ERROR"} and message in reports[0][1]
+    assert readback.data_snapshot() == before
+
+
+def test_needs_a_camera():
+    with pytest.raises(RuntimeError, match="camera"):
+        bpy.ops.sandscape.add_clouds()
+
+
+STRESS = [
+    {"coverage": 0.0},
+    {"coverage": 1.0},
+    {"thickness": 0.01},
+    {"base": 10.0, "thickness": 50.0},
+    {"base": 20000.0},
+    {"cloud_type": "MIXED", "precipitation": 1.0, "erosion": 0.99, "curl": 10.0},
+    {"phase": "MIE"},
+]
+
+
+@pytest.mark.parametrize("props", STRESS)
+def test_extreme_settings_render_finite(props):
+    scene = bpy.context.scene
+    scenes.camera("PERSP", location=(0.0, 0.0, 2.0), rotation=(math.radians(75.0), 0.0, 0.0), lens=20.0)
+    scene.camera.data.clip_end = 1e6
+    readback.cycles_scene(scene, (24, 16), samples=2)
+    bpy.ops.mesh.primitive_plane_add(size=100.0)
+    scene.sandscape_atmosphere.density = 0.0
+    bpy.ops.sandscape.add_atmosphere()
+    assert bpy.ops.sandscape.add_clouds(step=400.0, **props) == {"FINISHED"}
+    pixels = readback.render(scene)
+    assert np.isfinite(pixels).all()
+    has_layer = any(o.get("sandscape_object") == "clouds" for o in scene.objects)
+    assert has_layer == (props.get("coverage") != 0.0)
+
+
+def test_extreme_wind_renders_finite():
+    scene = bpy.context.scene
+    scenes.camera("PERSP", location=(0.0, 0.0, 2.0), rotation=(math.radians(75.0), 0.0, 0.0), lens=20.0)
+    scene.camera.data.clip_end = 1e6
+    readback.cycles_scene(scene, (24, 16), samples=2)
+    scene.sandscape_atmosphere.wind = (9000.0, -9000.0, 100.0)
+    assert bpy.ops.sandscape.add_clouds(step=400.0) == {"FINISHED"}
+    scene.frame_set(200)
+    assert np.isfinite(readback.render(scene)).all()
