@@ -142,12 +142,7 @@ def ensure_volume(scene, coefficients, low, high, dust=None):
     dust = dust or {}
     if float(np.max(coefficients)) <= 0.0 and not dust.get("scatter", 0.0) > 0.0:
         if box is not None:
-            mesh, material = box.data, box.active_material
-            bpy.data.objects.remove(box)
-            if mesh.users == 0:
-                bpy.data.meshes.remove(mesh)
-            if material is not None and material.users == 0:
-                bpy.data.materials.remove(material)
+            own.remove_with_data(box)
         return None
     if box is None:
         mesh = bpy.data.meshes.new("Sandscape Dust")

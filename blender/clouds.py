@@ -113,14 +113,8 @@ def layer_geometry(scene, s, image):
 
 def remove_layer(scene):
     layer = own.scene_object(scene, own.CLOUDS)
-    if layer is None:
-        return
-    mesh, material = layer.data, layer.active_material
-    bpy.data.objects.remove(layer)
-    if mesh.users == 0:
-        bpy.data.meshes.remove(mesh)
-    if material is not None and material.users == 0:
-        bpy.data.materials.remove(material)
+    if layer is not None:
+        own.remove_with_data(layer)
 
 
 def ensure_layer(scene):
@@ -196,8 +190,12 @@ def build_material(material, scene, s, image):
                                      "Type": 0.5 if mixed else p["cloud_type"], "Mixed Types": float(mixed),
                                      "Map Scale": p["map_scale"], **common})
         _drive_frame(weather)
-        for name in ("Coverage", "Precipitation", "Type"):
+        # One type everywhere: the type's noise is left unlinked, so Cycles never evaluates it.
+        for name in ("Coverage", "Type") if mixed else ("Coverage",):
             h.link(tree, weather.outputs[name], density.inputs[name])
+        density.inputs["Precipitation"].default_value = s["precipitation"]
+        if not mixed:
+            density.inputs["Type"].default_value = p["cloud_type"]
     output = h.add_node(tree, "ShaderNodeOutputMaterial", name="Sandscape Output")
     if s["phase"] == "MIE":
         scatter = h.add_node(tree, "ShaderNodeVolumeScatter", name="Sandscape Cloud Droplets",

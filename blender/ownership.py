@@ -81,6 +81,16 @@ def node(tree, name):
     return tree.nodes.get(name) if tree is not None else None
 
 
+def remove_with_data(obj):
+    """Remove our object, and its mesh and material when nothing else uses them."""
+    mesh, material = obj.data, obj.active_material
+    bpy.data.objects.remove(obj)
+    if mesh is not None and mesh.users == 0:
+        bpy.data.meshes.remove(mesh)
+    if material is not None and material.users == 0:
+        bpy.data.materials.remove(material)
+
+
 def not_editable(block):
     """Why a data-block cannot take our changes (linked, overridden, not editable), or None.
 

@@ -113,18 +113,12 @@ def build(tree):
     profile, gradient_nodes = _gradient(tree, inputs["Type"], height)
 
     # Tops lean downwind: the noises are sampled Skew x h upwind (core.clouds.wind_direction).
-    flat = h.vector_math(tree, "MULTIPLY", inputs["Wind"], (1.0, 1.0, 0.0), label="Horizontal Wind")
-    length = h.vector_math(tree, "LENGTH", flat.outputs[0], label="|Wind|")
-    calm = h.math(tree, "LESS_THAN", length.outputs["Value"], 1e-9, label="Calm")
-    fallback = h.vector_math(tree, "SCALE", (1.0, 0.0, 0.0), label="Calm: along X")
-    h.link(tree, calm.outputs[0], fallback.inputs["Scale"])
-    either = h.vector_math(tree, "ADD", flat.outputs[0], fallback.outputs[0], label="Wind or X")
-    direction = h.vector_math(tree, "NORMALIZE", either.outputs[0], label="Wind Direction")
+    direction, direction_nodes = h.wind_direction(tree, inputs["Wind"])
     lean = h.math(tree, "MULTIPLY", inputs["Skew"], height, label="Skew × h")
-    offset = h.vector_math(tree, "SCALE", direction.outputs[0], label="Lean")
+    offset = h.vector_math(tree, "SCALE", direction, label="Lean")
     h.link(tree, lean.outputs[0], offset.inputs["Scale"])
     skewed = h.vector_math(tree, "SUBTRACT", drifted, offset.outputs[0], label="Skewed Position")
-    skew_nodes = (flat, length, calm, fallback, either, direction, lean, offset, skewed)
+    skew_nodes = (*direction_nodes, lean, offset, skewed)
 
     shape_space, shape_space_nodes = seeded(tree, skewed.outputs[0], inputs["Shape Scale"], inputs["Seed"],
                                             label="Shape")

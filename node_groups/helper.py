@@ -157,6 +157,19 @@ def normal_or_geometry(tree, normal):
     return unit.outputs["Vector"], (geometry, length, given, choose, unit)
 
 
+def wind_direction(tree, wind):
+    """Unit horizontal direction of a wind socket, along X when calm (core.sand / core.clouds
+    twin it). Returns (the direction socket, the nodes made)."""
+    flat = vector_math(tree, "MULTIPLY", wind, (1.0, 1.0, 0.0), label="Horizontal Wind")
+    length = vector_math(tree, "LENGTH", flat.outputs[0], label="|Wind|")
+    calm = math(tree, "LESS_THAN", length.outputs["Value"], 1e-9, label="Calm")
+    fallback = vector_math(tree, "SCALE", (1.0, 0.0, 0.0), label="Calm: along X")
+    link(tree, calm.outputs[0], fallback.inputs["Scale"])
+    either = vector_math(tree, "ADD", flat.outputs[0], fallback.outputs[0], label="Wind or X")
+    direction = vector_math(tree, "NORMALIZE", either.outputs[0], label="Wind Direction")
+    return direction.outputs[0], (flat, length, calm, fallback, either, direction)
+
+
 def link(tree, from_socket, to_socket):
     return tree.links.new(from_socket, to_socket)
 

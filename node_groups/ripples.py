@@ -51,17 +51,11 @@ def build(tree):
     inputs = group_in.outputs
     normal, normal_nodes = h.normal_or_geometry(tree, inputs["Normal"])
 
-    flat = h.vector_math(tree, "MULTIPLY", inputs["Wind"], (1.0, 1.0, 0.0), label="Horizontal Wind")
-    length = h.vector_math(tree, "LENGTH", flat.outputs[0], label="|Wind|")
-    calm = h.math(tree, "LESS_THAN", length.outputs["Value"], 1e-9, label="Calm")
     # No wind: crests along Y, as under a wind along X.
-    fallback = h.vector_math(tree, "SCALE", (1.0, 0.0, 0.0), label="Calm: along X")
-    h.link(tree, calm.outputs[0], fallback.inputs["Scale"])
-    wind = h.vector_math(tree, "ADD", flat.outputs[0], fallback.outputs[0], label="Wind or X")
-    direction = h.vector_math(tree, "NORMALIZE", wind.outputs[0], label="Wind Direction")
+    direction, direction_nodes = h.wind_direction(tree, inputs["Wind"])
 
     position = h.add_node(tree, "ShaderNodeNewGeometry")
-    along = h.vector_math(tree, "DOT_PRODUCT", position.outputs["Position"], direction.outputs[0],
+    along = h.vector_math(tree, "DOT_PRODUCT", position.outputs["Position"], direction,
                           label="Distance along the Wind")
     cycles = h.math(tree, "DIVIDE", along.outputs["Value"], inputs["Wavelength"], label="÷ Wavelength")
     straight = h.math(tree, "MULTIPLY", cycles.outputs[0], 2 * math.pi, label="Straight Phase")
@@ -86,7 +80,7 @@ def build(tree):
                        inputs={2: 1.0})
     h.link(tree, steep_loss.outputs[0], steep.inputs[0])
     h.link(tree, steepness.outputs["Result"], steep.inputs[1])
-    downwind = h.vector_math(tree, "DOT_PRODUCT", normal, direction.outputs[0], label="Faces Downwind")
+    downwind = h.vector_math(tree, "DOT_PRODUCT", normal, direction, label="Faces Downwind")
     leeness = h.add_node(tree, "ShaderNodeMapRange", label="Lee Side", interpolation_type="SMOOTHSTEP",
                          inputs={"From Min": 0.0, "From Max": math.sin(sand.REPOSE), "To Min": 0.0,
                                  "To Max": 1.0})
@@ -103,7 +97,7 @@ def build(tree):
 
     height = h.math(tree, "MULTIPLY", scale.outputs[0], wave.outputs[0], label="Height")
     k = h.math(tree, "DIVIDE", 2 * math.pi, inputs["Wavelength"], label="2π / Wavelength")
-    across = h.vector_math(tree, "SCALE", direction.outputs[0], label="k × Wind Direction")
+    across = h.vector_math(tree, "SCALE", direction, label="k × Wind Direction")
     h.link(tree, k.outputs[0], across.inputs["Scale"])
     bend_rate = h.math(tree, "MULTIPLY", meander_radians.outputs[0], 2.0, label="2 × Meander × 2π")
     bend = h.vector_math(tree, "SCALE", lattice["gradient"], label="× ∇m")
@@ -121,7 +115,7 @@ def build(tree):
     h.link(tree, height.outputs[0], group_out.inputs["Height"])
     h.link(tree, rippled.outputs[0], group_out.inputs["Normal"])
     h.frame(tree, "Surface Normal", normal_nodes)
-    h.frame(tree, "Wind Direction", (flat, length, calm, fallback, wind, direction))
+    h.frame(tree, "Wind Direction", direction_nodes)
     h.frame(tree, "Lattice Noise (m, g)", lattice_nodes)
     h.frame(tree, "Crests across the Wind, Meandering", (position, along, cycles, straight, meander_radians,
                                                           centred, shift, phase, wave, wave_slope))
