@@ -23,9 +23,6 @@ from . import ownership as own
 
 CELLS = 48  # grid cells along each side of the layer's box
 FRAME_SAMPLES = 16  # camera positions sampled over the frame range
-METRE_FIELDS = ("base", "thickness", "map_scale", "shape_scale", "detail_scale", "skew", "reach",
-                "map_size", "step")
-
 
 def camera_views(scene, camera):
     """The camera's world matrix and frame at up to FRAME_SAMPLES frames of the scene's range
@@ -230,8 +227,7 @@ def step_rate(bounds, low, high, step):
 def apply(scene, s, image=None):
     """Build or update the layer from settings s (a dict, scene units); returns what was done."""
     low, high = s["base"], s["base"] + s["thickness"]
-    bounds, mask = (None, None) if s["coverage"] <= 0 and s["weather_source"] == "PROCEDURAL" else \
-        layer_geometry(scene, s, image)
+    bounds, mask = layer_geometry(scene, s, image)  # coverage 0: no cell holds cloud
     if mask is None:
         remove_layer(scene)
         return {"layer": None, "cells": 0, "bounds": bounds}

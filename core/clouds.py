@@ -207,10 +207,11 @@ def sphere_integral(phase, n=2000):
 
 
 def frame_rays(camera, samples=17):
-    """Origins and directions (world) of rays through the border of a camera's frame.
+    """Origins and directions (world) of rays through the border of a camera's frame, and last
+    the ray through its middle (a camera looking straight up sees the slab only there).
 
     camera: dict with "matrix" (4x4 world matrix, camera looks down its -Z), "ortho" (bool),
-    "ortho_scale", and "corners": the four frame corners in camera space at z = -1 (perspective)
+    and "corners": the four frame corners in camera space at z = -1 (perspective)
     or the frame half sizes (ortho: x and y of the corners, z ignored).
     """
     matrix = np.asarray(camera["matrix"], np.float64)
@@ -231,7 +232,10 @@ def frame_rays(camera, samples=17):
         origins = np.broadcast_to(location, border.shape)
         directions = border @ rotation.T
         directions = directions / np.linalg.norm(directions, axis=1, keepdims=True)
-    return np.array(origins), np.array(directions)
+    middle = directions.mean(axis=0)
+    origins = np.vstack([origins, origins.mean(axis=0)])
+    directions = np.vstack([directions, middle / np.linalg.norm(middle)])
+    return origins, directions
 
 
 def _slab_points(origins, directions, low, high, reach, centre):
@@ -278,17 +282,10 @@ def layer_bounds(cameras, base, top, reach, ground=0.0, sun_direction=None):
     for camera in cameras:
         origins, directions = frame_rays(camera)
         centre = np.asarray(camera["matrix"], np.float64)[:2, 3]
-        # Interior rays too: a camera looking straight up sees the slab only through the middle.
         points.append(_slab_points(origins, directions, base, top, reach, centre))
-        mid_origin = origins.mean(axis=0)
-        mid_direction = directions.mean(axis=0)
-        points.append(_slab_points(mid_origin[None], (mid_direction / np.linalg.norm(mid_direction))[None],
-                                   base, top, reach, centre))
         if sun_direction is not None and sun_direction[2] > 1e-6:
             floor = ground - 1e-3 * reach  # a thin slab at the ground: where rays meet it
             seen = _slab_points(origins, directions, floor, ground, reach, centre)
-            seen = np.vstack([seen, _slab_points(mid_origin[None], mid_direction[None] / np.linalg.norm(
-                mid_direction), floor, ground, reach, centre)])
             if len(seen):
                 sun = np.asarray(sun_direction, np.float64) / np.linalg.norm(sun_direction)
                 flat = seen.copy()

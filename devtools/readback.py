@@ -60,6 +60,24 @@ def bake_emit(obj, material, resolution):
     return pixels.reshape(resolution, resolution, 4)
 
 
+def bake_emit_with_positions(obj, material, resolution):
+    """bake_emit, and the world position of every baked pixel: Cycles' bake points sit up to a
+    few thousandths of a pixel off the pixel centres, so twins are evaluated where it shaded.
+    Leaves obj with a Position material in its first slot."""
+    baked = bake_emit(obj, material, resolution)
+    position = bpy.data.materials.new("Position")
+    tree = position.node_tree
+    tree.nodes.clear()
+    geometry = tree.nodes.new("ShaderNodeNewGeometry")
+    emission = tree.nodes.new("ShaderNodeEmission")
+    out = tree.nodes.new("ShaderNodeOutputMaterial")
+    tree.links.new(geometry.outputs["Position"], emission.inputs["Color"])
+    tree.links.new(emission.outputs[0], out.inputs["Surface"])
+    obj.data.materials[0] = position
+    world = bake_emit(obj, position, resolution)[..., :3].astype(np.float64)
+    return baked, world
+
+
 def render(scene=None):
     """Render the scene's camera into numpy: (H, W, 4) float32, rows bottom-up (Blender's order).
 

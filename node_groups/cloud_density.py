@@ -10,10 +10,10 @@ downwind by Skew at the top. Twin: core.clouds.density.
 
 from ..core import clouds
 from . import helper as h
-from .weather_map import drifted_position, seeded
+from .weather_map import DRIFT_INPUTS, PLAIN_NOISE, drifted_position, seeded
 
 NAME = "Sandscape Cloud Density"
-VERSION = 1
+VERSION = 2
 TREE_TYPE = "ShaderNodeTree"
 DESCRIPTION = "Density of a cloud layer from a weather map: height gradient by type, shape, erosion, wind"
 INPUTS = {
@@ -33,14 +33,8 @@ INPUTS = {
     "Curl": ("NodeSocketFloat", "Distortion of the detail, in detail cells at the top of the layer", 0.5,
              0.0, None, None),
     "Skew": ("NodeSocketFloat", "How far the tops lean downwind", 300.0, None, None, "DISTANCE"),
-    "Seed": ("NodeSocketFloat", "Another seed, other clouds", 0.0, None, None, None),
-    "Wind": ("NodeSocketVector", "Wind velocity, per second: the clouds drift with it", (3.0, 1.0, 0.0),
-             None, None, "VELOCITY"),
-    "Frame": ("NodeSocketFloat", "Current frame (driven by 'frame')", 1.0, None, None, None),
-    "FPS": ("NodeSocketFloat", "Frames per second of the scene", 24.0, 1e-3, None, None),
+    **DRIFT_INPUTS,
 }
-# Noise Texture inputs that make it the plain Perlin fBm of core.noise_perlin.fbm.
-PLAIN_NOISE = {"Scale": 1.0, "Roughness": 0.5, "Lacunarity": 2.0, "Distortion": 0.0}
 OUTPUTS = {
     "Density": ("NodeSocketFloat", "Extinction per unit length: the Density of a Volume Scatter"),
     "Height Fraction": ("NodeSocketFloat", "0 at the layer's bottom, 1 at its top"),

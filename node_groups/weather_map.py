@@ -14,9 +14,19 @@ from ..core import clouds
 from . import helper as h
 
 NAME = "Sandscape Weather Map"
-VERSION = 1
+VERSION = 2
 TREE_TYPE = "ShaderNodeTree"
 DESCRIPTION = "Procedural weather map for the cloud layer: coverage, precipitation and cloud type"
+# Inputs every cloud group shares: its pattern's seed, and where the wind has carried it by now.
+DRIFT_INPUTS = {
+    "Seed": ("NodeSocketFloat", "Another seed, another sky", 0.0, None, None, None),
+    "Wind": ("NodeSocketVector", "Wind velocity, per second: the clouds drift with it", (3.0, 1.0, 0.0),
+             None, None, "VELOCITY"),
+    "Frame": ("NodeSocketFloat", "Current frame (driven by 'frame')", 1.0, None, None, None),
+    "FPS": ("NodeSocketFloat", "Frames per second of the scene", 24.0, 1e-3, None, None),
+}
+# Noise Texture inputs that make it the plain Perlin fBm of core.noise_perlin.fbm.
+PLAIN_NOISE = {"Scale": 1.0, "Roughness": 0.5, "Lacunarity": 2.0, "Distortion": 0.0}
 INPUTS = {
     "Coverage": ("NodeSocketFloat", "Share of the sky under cloud, 0..1", 0.5, 0.0, 1.0, "FACTOR"),
     "Precipitation": ("NodeSocketFloat", "Rain in the clouds, 0..1: denser and darker", 0.0, 0.0, 1.0,
@@ -27,11 +37,7 @@ INPUTS = {
                     "everywhere", 0.0, 0.0, 1.0, "FACTOR"),
     "Map Scale": ("NodeSocketFloat", "Size of the weather features: one noise cell", 6000.0, 1e-3, None,
                   "DISTANCE"),
-    "Seed": ("NodeSocketFloat", "Another seed, another sky", 0.0, None, None, None),
-    "Wind": ("NodeSocketVector", "Wind velocity, per second: the map drifts with it", (3.0, 1.0, 0.0),
-             None, None, "VELOCITY"),
-    "Frame": ("NodeSocketFloat", "Current frame (driven by 'frame')", 1.0, None, None, None),
-    "FPS": ("NodeSocketFloat", "Frames per second of the scene", 24.0, 1e-3, None, None),
+    **DRIFT_INPUTS,
 }
 OUTPUTS = {
     "Coverage": ("NodeSocketFloat", "Cloud here, 0..1 (red of a painted map)"),
@@ -75,8 +81,7 @@ def build(tree):
 
     map_space, map_nodes = seeded(tree, drifted, inputs["Map Scale"], inputs["Seed"], label="Map")
     weather = h.add_node(tree, "ShaderNodeTexNoise", label="Weather Noise", noise_dimensions="2D",
-                         inputs={"Scale": 1.0, "Detail": clouds.MAP_DETAIL, "Roughness": 0.5,
-                                 "Lacunarity": 2.0, "Distortion": 0.0})
+                         inputs={**PLAIN_NOISE, "Detail": clouds.MAP_DETAIL})
     h.link(tree, map_space, weather.inputs["Vector"])
     # edge = c0 + c1 L + c3 L^3 - shift, L = ln((1 - c) / c), c kept where the fit is monotone;
     # +-10 at coverage 0 and 1 (core.clouds.coverage_edge, map_coverage).
@@ -107,8 +112,7 @@ def build(tree):
     type_scale = h.math(tree, "MULTIPLY", inputs["Map Scale"], clouds.TYPE_MAP_SCALE, label="Type Map Scale")
     type_space, type_nodes = seeded(tree, drifted, type_scale.outputs[0], inputs["Seed"], 5.5, "Type Map")
     type_noise = h.add_node(tree, "ShaderNodeTexNoise", label="Type Noise", noise_dimensions="2D",
-                            inputs={"Scale": 1.0, "Detail": 1.0, "Roughness": 0.5, "Lacunarity": 2.0,
-                                    "Distortion": 0.0})
+                            inputs={**PLAIN_NOISE, "Detail": 1.0})
     h.link(tree, type_space, type_noise.inputs["Vector"])
     stretched = h.add_node(tree, "ShaderNodeMapRange", label="0.3..0.7 → 0..1",
                            inputs={"From Min": 0.3, "From Max": 0.7})

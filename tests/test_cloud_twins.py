@@ -25,14 +25,8 @@ def bake_on_plane(material, size, height, offset=(0.0, 0.0)):
     plane.location = (offset[0], offset[1], height)
     bpy.context.view_layer.update()
     plane.data.materials.append(material)
-    baked = readback.bake_emit(plane, material, RES)[..., 0].astype(np.float64)
-    position = scenes.single_node_material("Position", "ShaderNodeEmission")
-    geometry = position.node_tree.nodes.new("ShaderNodeNewGeometry")
-    emission = next(n for n in position.node_tree.nodes if n.type == "EMISSION")
-    position.node_tree.links.new(geometry.outputs["Position"], emission.inputs["Color"])
-    plane.data.materials[0] = position
-    world = readback.bake_emit(plane, position, RES)[..., :3].astype(np.float64)
-    return baked, world
+    baked, world = readback.bake_emit_with_positions(plane, material, RES)
+    return baked[..., 0].astype(np.float64), world
 
 
 def texture_material(node_type, output, scale, **props):

@@ -36,15 +36,8 @@ def bake_ripples(group, wind, output, matrix=None, **values):
     material = scenes.group_material(
         group, {"Wind": wind, "Wavelength": WAVELENGTH, "Amplitude": AMPLITUDE, **values}, output)
     plane.data.materials.append(material)
-    baked = readback.bake_emit(plane, material, RES)
-    # Where Cycles shaded: its bake points sit up to a few thousandths of a pixel off the pixel
-    # centres, which at this amplitude and wavelength alone would move the height by 4e-5.
-    position = scenes.single_node_material("Position", "ShaderNodeEmission")
-    geometry = position.node_tree.nodes.new("ShaderNodeNewGeometry")
-    emission = next(n for n in position.node_tree.nodes if n.type == "EMISSION")
-    position.node_tree.links.new(geometry.outputs["Position"], emission.inputs["Color"])
-    plane.data.materials[0] = position
-    world = readback.bake_emit(plane, position, RES)[..., :3].astype(np.float64)
+    # Where Cycles shaded: off the pixel centres by enough to move the height by 4e-5 alone.
+    baked, world = readback.bake_emit_with_positions(plane, material, RES)
     c = readback.pixel_centres(RES, -PLANE / 2, PLANE / 2).astype(np.float64)
     x, y = np.meshgrid(c, c)
     centres = np.stack([x, y, np.zeros_like(x), np.ones_like(x)], axis=-1) @ np.array(plane.matrix_world).T
