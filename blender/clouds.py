@@ -24,6 +24,15 @@ from . import ownership as own
 CELLS = 48  # grid cells along each side of the layer's box
 FRAME_SAMPLES = 16  # camera positions sampled over the frame range
 
+def scene_settings(scene):
+    """scene.sandscape_clouds as apply() takes it: lengths in scene units, the image by name."""
+    stored = scene.sandscape_clouds
+    values = {p.identifier: getattr(stored, p.identifier) for p in stored.bl_rna.properties
+              if p.identifier not in ("rna_type", "name", "weather_image")}
+    values["weather_image"] = stored.weather_image.name if stored.weather_image else ""
+    return values
+
+
 def camera_views(scene, camera):
     """The camera's world matrix and frame at up to FRAME_SAMPLES frames of the scene's range
     (one when nothing animates it), as core.clouds.frame_rays wants them."""

@@ -6,13 +6,14 @@ import bpy
 import numpy as np
 
 from ..core import dunes
-from . import atmosphere, footprints, post, presets, sand, walker
+from . import atmosphere, clouds, footprints, post, presets, sand, walker
 
 TERRAIN_SIZE = (120.0, 60.0)  # wide enough that the camera never sees past the dunes
 TERRAIN_SPACING = 0.25
 FRAMES = (1, 240)
 SUN = (math.radians(6.0), math.radians(70.0))  # low, ahead of the walker and in view
 CAMERA_OFFSET = (-7.0, -4.0, 2.2)  # behind and beside the walker, metres
+CLOUDS = {"coverage": 0.35, "seed": 4}  # cumulus over the low sun
 SAND = {"Threshold": 0.985, "Glint Size": 0.012, "Facing Power": 4.0, "Strength": 60.0, "Seed": 1.0}
 
 
@@ -38,7 +39,7 @@ def follow_camera(scene, walker):
     """A camera that keeps its offset from the walker and looks at it (constraints, no scripts)."""
     camera = bpy.data.objects.new("Demo Camera", bpy.data.cameras.new("Demo Camera"))
     camera.data.lens = 24.0
-    camera.data.clip_end = 500.0
+    camera.data.clip_end = 40000.0  # the clouds are kilometres away
     # Lens shift, not a tilt: the walker stays in the lower half and the low sun comes into frame.
     camera.data.shift_x, camera.data.shift_y = 0.1, 0.08
     scene.collection.objects.link(camera)
@@ -54,7 +55,8 @@ def follow_camera(scene, walker):
 
 
 def build(context):
-    """Dunes, glinting sand, a walker with footprints, dusty air with a low sun, post effects, camera.
+    """Dunes, glinting sand, a walker with footprints, dusty air with a low sun, clouds, post effects,
+    camera.
 
     Calls the bpy layer directly with known-good values (operators validate artists' input).
     """
@@ -84,6 +86,9 @@ def build(context):
     atmosphere.apply(scene, air)
     scene.view_settings.view_transform = "AgX"
     camera = follow_camera(scene, steps.walker)
+    for name, value in CLOUDS.items():
+        setattr(scene.sandscape_clouds, name, value)
+    clouds.apply(scene, clouds.scene_settings(scene))  # spans the camera's views over the frames
     # The rays add sun-disc light on top of the image: scaled by the inverse of the exposure,
     # they keep their brightness on screen.
     scene.sandscape_post.ray_exposure = 2.0 ** -scene.view_settings.exposure

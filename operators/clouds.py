@@ -21,15 +21,10 @@ class SANDSCAPE_OT_add_clouds(SandscapeOperator, bpy.types.Operator):
 
     def settings(self, context):
         """Every field: the value passed, else the scene's setting (scene units)."""
-        stored = context.scene.sandscape_clouds
-        values = {}
+        values = clouds.scene_settings(context.scene)
         for name in FIELDS:
             if self.properties.is_property_set(name):
                 values[name] = getattr(self, name)
-            elif name == "weather_image":
-                values[name] = stored.weather_image.name if stored.weather_image else ""
-            else:
-                values[name] = getattr(stored, name)
             setattr(self, name, values[name])
         return values
 

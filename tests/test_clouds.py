@@ -259,3 +259,61 @@ def test_extreme_wind_renders_finite():
     assert bpy.ops.sandscape.add_clouds(step=400.0) == {"FINISHED"}
     scene.frame_set(200)
     assert np.isfinite(readback.render(scene)).all()
+
+
+SLAB_SIGMA, SLAB_THICKNESS, SUN_STRENGTH = 1e-4, 10.0, 1000.0  # optical depth 1e-3: single scatter
+
+
+def slab_radiance(sun_elevation, forward, back, back_weight):
+    """Mean radiance of Add Clouds' phase nodes over a thin uniform slab, seen straight down by an
+    ortho camera, lit by a point-like sun at `sun_elevation` (negative: from below, forward
+    scattering), single scattering only under a black sky."""
+    bpy.ops.wm.read_homefile(use_empty=True)
+    scene = bpy.context.scene
+    readback.cycles_scene(scene, (16, 16), samples=16)
+    scene.cycles.volume_bounces = 0
+    scene.cycles.max_bounces = 0
+    scenes.camera("ORTHO", location=(0.0, 0.0, 3000.0), ortho_scale=200.0)
+    scene.camera.data.clip_end = 1e6
+    world = bpy.data.worlds.new("Black")
+    world.node_tree.nodes["Background"].inputs["Strength"].default_value = 0.0
+    scene.world = world
+    lamp = bpy.data.objects.new("Sun", bpy.data.lights.new("Sun", "SUN"))
+    lamp.data.angle = 0.0
+    lamp.data.energy = SUN_STRENGTH
+    lamp.rotation_euler = (math.pi / 2 - sun_elevation, 0.0, math.radians(30.0))
+    scene.collection.objects.link(lamp)
+    assert bpy.ops.sandscape.add_clouds(coverage=1.0, base=1000.0, thickness=SLAB_THICKNESS, step=1.0,
+                                        forward=forward, back=back, back_weight=back_weight) == {"FINISHED"}
+    tree = cloud_layer(scene).active_material.node_tree
+    uniform = tree.nodes.new("ShaderNodeValue")
+    uniform.outputs[0].default_value = SLAB_SIGMA
+    for lobe in ("Sandscape Cloud Forward Lobe", "Sandscape Cloud Back Lobe"):
+        tree.links.new(uniform.outputs[0], tree.nodes[lobe].inputs["Density"])
+    return float(readback.render(scene)[..., 0].mean())
+
+
+def single_scatter(sun_elevation, phase):
+    """Radiance leaving the slab's top towards the zenith: sun irradiance x sigma x phase, times the
+    attenuation of both paths integrated through the slab (numpy quadrature)."""
+    cos_theta = -math.sin(sun_elevation)  # light travels along -sun; the camera looks back along +z
+    depth = (np.arange(2000) + 0.5) * SLAB_THICKNESS / 2000  # from the top; midpoint rule
+    sun_path = (depth if sun_elevation > 0 else SLAB_THICKNESS - depth) / abs(math.sin(sun_elevation))
+    attenuation = np.exp(-SLAB_SIGMA * (depth + sun_path))
+    return SUN_STRENGTH * SLAB_SIGMA * float(phase(cos_theta)) * float(attenuation.mean()) * SLAB_THICKNESS
+
+
+@pytest.mark.parametrize("lobes", [(0.8, -0.3, 0.3), (0.6, -0.5, 0.5)])
+def test_dual_lobe_phase_matches_a_thin_slab_render(lobes):
+    """Seed 003's dual lobe as Add Clouds builds it scatters what the twin's phase says, within 3 %,
+    from backscatter under a high sun to forward scatter of a sun below the slab."""
+    forward, back, back_weight = lobes
+    ratios = {}
+    for degrees in (70.0, 25.0, -25.0, -60.0, -85.0):
+        elevation = math.radians(degrees)
+        rendered = slab_radiance(elevation, *lobes)
+        expected = single_scatter(elevation, lambda c: twin.dual_lobe(c, forward, back, back_weight))
+        ratios[degrees] = rendered / expected
+    print(f"lobes {lobes}: rendered / twin {ratios}")
+    for degrees, ratio in ratios.items():
+        assert ratio == pytest.approx(1.0, abs=0.03), (degrees, ratios)

@@ -210,7 +210,7 @@ def cloud_fields(for_operator):
         "droplet_size": FloatProperty(name="Droplet Size", default=20.0, soft_min=5.0, soft_max=50.0,
                                       description="Water droplet diameter in micrometres, for the Mie phase",
                                       **skip),
-        "step": distance("step_m", "Step", 100.0, "Ray-marching step through the clouds: smaller is "
+        "step": distance("step_m", "Step", 200.0, "Ray-marching step through the clouds: smaller is "
                          "slower and more exact", 1000.0, 1.0),
     }
     if for_operator:
