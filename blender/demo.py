@@ -13,7 +13,8 @@ TERRAIN_SPACING = 0.25
 FRAMES = (1, 240)
 SUN = (math.radians(6.0), math.radians(70.0))  # low, ahead of the walker and in view
 CAMERA_OFFSET = (-7.0, -4.0, 2.2)  # behind and beside the walker, metres
-CLOUDS = {"coverage": 0.35, "seed": 4}  # cumulus over the low sun
+CLOUDS = {"coverage": 0.4, "seed": 4, "base": 700.0, "thickness": 1200.0, "step": 400.0,
+          "reach": 8000.0}  # low cumulus, in the sky band the camera sees above the haze
 SAND = {"Threshold": 0.985, "Glint Size": 0.012, "Facing Power": 4.0, "Strength": 60.0, "Seed": 1.0}
 
 
