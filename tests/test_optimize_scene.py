@@ -74,6 +74,7 @@ def test_dark_glints_idle_rays_and_bounces(sandscape, wasteful_demo):
     scene.sandscape_atmosphere.sun_azimuth = math.radians(270.0)  # behind the walker and the camera
     scene.sandscape_atmosphere.density = scene.sandscape_atmosphere.dust_density = 0.0  # no dust box
     bpy.ops.sandscape.add_atmosphere()
+    assert bpy.ops.sandscape.add_clouds(coverage=0.0) == {"FINISHED"}  # clear sky: no volume is left
     bpy.ops.sandscape.add_post_effects()
     lines = run(dry_run=False)
     assert any("glint strength 0" in line for line in lines)
