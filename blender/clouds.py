@@ -246,7 +246,8 @@ def apply(scene, s, image=None):
     build_material(material, scene, s, image)
     rate = step_rate(bounds, low, high, s["step"])
     material.cycles.volume_step_rate = float(min(max(rate, 1e-6), 1e6))
-    scene.cycles.volume_biased = True  # ray marching: the measured faster route (bench/clouds.py)
+    # Ray marching: 16x / 4.9x / 1.6x faster than the default at 4 / 16 / 64 spp (bench/clouds.py).
+    scene.cycles.volume_biased = True
     # A ray through the whole layer at 6 degrees is thickness / sin(6 deg) long.
     needed = int(math.ceil(min(s["thickness"] / math.sin(math.radians(6.0)), 2 * s["reach"]) / s["step"]))
     scene.cycles.volume_max_steps = int(min(max(scene.cycles.volume_max_steps, needed), 16384))
