@@ -30,15 +30,22 @@ _RAW_RAY_MARCHED = {"use_adaptive_sampling": False, "adaptive_threshold": 0.0, "
                     "sampling_pattern": "AUTOMATIC"}
 
 
-def _preset(samples, volume_bounces):
+def _preset(samples, volume_bounces, denoise=True):
     return {"samples": samples, **_RAW_RAY_MARCHED, "volume_bounces": volume_bounces,
-            "max_bounces": max(12, volume_bounces)}
+            "max_bounces": max(12, volume_bounces), DENOISE: denoise}
 
 
-PRESETS = {"DRAFT": _preset(32, 16), "PREVIEW": _preset(64, 64), "FINAL": _preset(384, 128)}
+DENOISE = "denoise_but_glints"  # not a Cycles setting: the post-effects tree's denoising
+PRESETS = {"DRAFT": _preset(16, 16), "PREVIEW": _preset(64, 64), "FINAL": _preset(256, 128)}
 
 
 def apply(scene, settings):
-    """Set the Cycles settings of a preset (or any dict of the same keys) on the scene."""
+    """Set the Cycles settings of a preset (or any dict of the same keys) on the scene, and the
+    compositor's denoising of all but the glints when the preset names it."""
     for key, value in settings.items():
-        setattr(scene.cycles, key, value)
+        if key != DENOISE:
+            setattr(scene.cycles, key, value)
+    if DENOISE in settings:
+        from . import post  # bpy-heavy; presets stay importable for the bench's tables
+
+        post.set_denoise(scene, settings[DENOISE])

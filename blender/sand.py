@@ -42,6 +42,8 @@ PRINT_SPACE, PRINT_REGION = "Sandscape Print Space", "Sandscape Print Region"
 PRINT_MAP = "Sandscape Print Map"
 GLINT_NOISE, GLINTS_ADDED = "Sandscape Glint Noise", "Sandscape Sand + Glints"
 RIPPLE_DISPLACEMENT = "Sandscape Ripple Displacement"
+GLINT_AOV_NODE = "Sandscape Glint AOV"
+GLINT_AOV = "sandscape_glint"  # read by the post-effects tree: where grains can glint
 
 
 def default_glint_values():
@@ -172,6 +174,7 @@ def update_material(material, values, image=None, look="PHYSICAL", glint_mode="L
         if kept is not None:  # a rebuilt tree keeps the painted footprints
             attach_footprints(material, *kept)
     node = glint_node(material)
+    _glint_aov(material, node)
     if image is not None:
         image_node(material).image = image
     for name in GLINT_INPUTS:
@@ -253,6 +256,19 @@ def _build_tree(material, image, look, glint_mode, with_ripples):
         h.link(tree, add.outputs[0], output.inputs["Surface"])
     h.arrange(tree, set_widths=False)
     return glint
+
+
+def _glint_aov(material, glint):
+    """An AOV output of the glint mask, so the compositor can keep the glints out of the denoiser
+    (a material built before it existed gets it on its next update)."""
+    tree = material.node_tree
+    aov = own.node(tree, GLINT_AOV_NODE)
+    if aov is None:
+        aov = h.add_node(tree, "ShaderNodeOutputAOV", name=GLINT_AOV_NODE, label="Glint AOV")
+        aov.location = glint.location + type(glint.location)((0.0, -300.0))
+    aov.aov_name = GLINT_AOV
+    if not aov.inputs["Value"].is_linked:
+        h.link(tree, glint.outputs["Mask"], aov.inputs["Value"])
 
 
 def _ripple_displacement(material, wanted):

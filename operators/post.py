@@ -45,13 +45,16 @@ class SANDSCAPE_OT_add_post_effects(SandscapeOperator, bpy.types.Operator):
         if problem:
             return self.fail(problem)
         done = post.apply_post_effects(scene, settings)
-        switches = (("gated blur", settings.use_blur), ("god rays", settings.use_god_rays))
+        switches = (("denoising but the glints", settings.use_denoise), ("gated blur", settings.use_blur),
+                    ("god rays", settings.use_god_rays))
         effects = [name for name, on in switches if on] or ["none"]
         replaced = f"; compositor '{done['replaced'].name}' kept with a fake user" if done["replaced"] else ""
         keyed = f", sun keyed on {len(done['curve'])} frames" if done["curve"] else ""
         keyed += "; render engine set to Cycles (the passes are Cycles')" if done["switched_engine"] else ""
+        keyed += ("; render denoising off (the compositor denoises, all but the glints)"
+                  if done["switched_denoiser"] else "")
         self.report({"INFO"}, f"Post effects: {', '.join(effects)}{keyed}{replaced}")
-        if settings.use_blur and scene.cycles.use_denoising:
+        if settings.use_blur and not settings.use_denoise and scene.cycles.use_denoising:
             # The volume passes are not denoised: the combined image minus a noisy pass shows specks.
             self.report({"WARNING"}, "Render denoising is on: the gated blur swaps noisy scattered light "
                         "into a denoised image. Switch denoising off, or the blur")

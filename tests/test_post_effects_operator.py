@@ -55,7 +55,7 @@ def test_intensity_fades_continuously_and_is_zero_behind(desert):
 
 
 def test_rays_appear_only_with_the_sun_in_front(desert):
-    desert.sandscape_post.use_blur = False
+    desert.sandscape_post.use_blur = desert.sandscape_post.use_denoise = False
     bpy.ops.sandscape.add_post_effects()
     difference = {}
     for frame in (1, LAST):
@@ -69,11 +69,16 @@ def test_rays_appear_only_with_the_sun_in_front(desert):
     assert difference[1] > 0.05 and difference[LAST] <= 1e-6
 
 
-def test_switched_off_effects_are_absent(desert):
+def test_switched_off_effects_are_absent(desert, sandscape):
+    own, post = sandscape.blender.ownership, sandscape.blender.post
     settings = desert.sandscape_post
     bpy.ops.sandscape.add_post_effects()
     tree = desert.compositing_node_group
     assert {"Sandscape Gated Blur", "Sandscape God Rays 32"} <= tree_groups(tree)
+    assert own.node(tree, post.DENOISE) is not None
+    settings.use_denoise = False
+    bpy.ops.sandscape.add_post_effects()
+    assert own.node(tree, post.DENOISE) is None
     settings.use_god_rays = False
     bpy.ops.sandscape.add_post_effects()
     assert desert.compositing_node_group == tree  # updated in place
@@ -93,7 +98,8 @@ def test_a_users_compositor_is_kept_and_restored(desert):
     bpy.ops.sandscape.add_post_effects()
     assert desert.compositing_node_group != theirs and theirs.use_fake_user
     assert desert.compositing_node_group["replaced_tree"] == "Their Grade"
-    desert.sandscape_post.use_blur = desert.sandscape_post.use_god_rays = False
+    settings = desert.sandscape_post
+    settings.use_denoise = settings.use_blur = settings.use_god_rays = False
     bpy.ops.sandscape.add_post_effects()
     assert desert.compositing_node_group == theirs
 

@@ -1,4 +1,5 @@
-"""Quality presets: each sets exactly its measured settings; the CLI takes --preset."""
+"""Quality presets: each sets exactly its measured settings, denoising in the compositor; the CLI
+takes --preset."""
 
 import bpy
 import pytest
@@ -6,19 +7,31 @@ import pytest
 
 @pytest.mark.parametrize("name", ["DRAFT", "PREVIEW", "FINAL"])
 def test_preset_sets_its_settings(sandscape, name):
+    presets = sandscape.blender.presets
     assert bpy.ops.sandscape.apply_quality_preset(preset=name) == {"FINISHED"}
-    settings = sandscape.blender.presets.PRESETS[name]
-    cycles = bpy.context.scene.cycles
+    settings = presets.PRESETS[name]
+    scene = bpy.context.scene
     for key, value in settings.items():
+        if key == presets.DENOISE:
+            continue
         if isinstance(value, str):
-            assert getattr(cycles, key) == value, key
+            assert getattr(scene.cycles, key) == value, key
         else:
-            assert getattr(cycles, key) == pytest.approx(value), key
+            assert getattr(scene.cycles, key) == pytest.approx(value), key
+    # The compositor denoises all but the glints; Cycles' denoiser would smear them first.
+    assert scene.sandscape_post.use_denoise and not scene.cycles.use_denoising
+    tree = sandscape.blender.ownership.scene_compositor(scene)
+    assert tree is not None and scene.compositing_node_group == tree
+    assert sandscape.blender.ownership.node(tree, sandscape.blender.post.DENOISE) is not None
+    # A scene without post effects gets only the denoising: no god rays without a sun.
+    assert sandscape.blender.post.rays_node(tree) is None
+    layer = scene.view_layers[0]
+    assert layer.cycles.denoising_store_passes and layer.use_pass_glossy_direct
+    assert any(aov.name == sandscape.blender.post.GLINT_AOV for aov in layer.aovs)
 
 
 def test_presets_get_cheaper_in_order(sandscape):
     presets = sandscape.blender.presets.PRESETS
     samples = [presets[name]["samples"] for name in ("DRAFT", "PREVIEW", "FINAL")]
     assert samples == sorted(samples) and samples[-1] < sandscape.blender.presets.BLENDER_DEFAULTS["samples"]
-    # Measured: OIDN smears glints, so no preset denoises (bench/RESULTS.md, Quality).
     assert not any(settings["use_denoising"] for settings in presets.values())

@@ -167,7 +167,7 @@ def test_post_effects_keep_the_renders_alpha(lit_scene):
 
 def test_god_rays_follow_a_camera_turned_after_add_post_effects(lit_scene, sandscape):
     post = sandscape.blender.post
-    lit_scene.sandscape_post.use_blur = False
+    lit_scene.sandscape_post.use_blur = lit_scene.sandscape_post.use_denoise = False
     lit_scene.frame_start = lit_scene.frame_end = 1
     bpy.ops.sandscape.add_post_effects()
     tree = lit_scene.compositing_node_group

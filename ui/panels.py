@@ -97,6 +97,7 @@ ATMOSPHERE_SECTIONS = (
               "falloff")),
 )
 POST_SECTIONS = (
+    ("Denoise", ("use_denoise",)),
     ("Gated Blur", ("use_blur", "blur_threshold")),
     ("God Rays", ("use_god_rays", "samples", "ray_density", "ray_weight", "ray_decay", "ray_exposure",
                   "disc_radius", "fade")),

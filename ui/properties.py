@@ -242,6 +242,9 @@ class SandscapePostSettings(bpy.types.PropertyGroup):
         "disc_radius": (1e-4, 10.0), "fade": (0.0, 10.0),
     }
 
+    use_denoise: BoolProperty(name="Denoise", default=True,
+                              description="Denoise everything but the glints (OpenImageDenoise with albedo "
+                              "and normal), then add the glints back sharp")
     use_blur: BoolProperty(name="Gated Blur", default=True,
                            description="Blur the scattered light where it changes the luminance (seed 000)")
     blur_threshold: FloatProperty(name="Threshold", default=0.01, soft_min=0.0, soft_max=1.0, precision=4,
