@@ -16,13 +16,15 @@ from ..core import sun as sky_sun
 from ..node_groups import dust_field, dust_volume
 from ..node_groups import helper as h
 from . import ownership as own
-from . import sand, units
+from . import sand, shot, units
 
 # Bump when build_sky_nodes changes: a world built by an older version is rebuilt.
 WORLD_NODES_KEY = "sandscape_sky_nodes"
 WORLD_NODES_VERSION = 2
 SUN_ENERGY = 4.0  # W/m² of a new sun lamp when its light does not come from the sky model
 SKY_SUN_SIZE = 0.009512044  # radians: the Sky Texture's default sun disc, which the lamp copies
+CLEAR = 0.01  # the haze may end where less than 1 % of the light behind it gets through
+MAX_REACH_M = 20000.0  # thin air would otherwise ask for a box hundreds of kilometres wide
 
 
 def scene_sun(scene):
@@ -119,6 +121,30 @@ def scene_bounds(scene, margin):
         return np.array([-half, -half, 0.0]) - margin, np.array([half, half, half]) + margin
     points = np.array([[c.x, c.y, c.z] for c in corners])
     return points.min(0) - margin, points.max(0) + margin
+
+
+def haze_reach(scene, extinction):
+    """Scene units after which the clearest channel lets less than CLEAR through; capped at
+    MAX_REACH_M and at the camera's clip end (nothing beyond it is rendered)."""
+    cap = units.to_units(scene, MAX_REACH_M)
+    if scene.camera is not None and scene.camera.type == "CAMERA":
+        cap = min(cap, scene.camera.data.clip_end)
+    clearest = float(np.min(extinction))
+    if not clearest > 0.0:
+        return cap
+    return min(cap, math.log(1.0 / CLEAR) / clearest)
+
+
+def shot_bounds(scene, reach, margin):
+    """The box the camera looks through over the frame range, `reach` deep; its floor is the
+    scene's lowest geometry (the rays stop at the ground). None without a camera."""
+    if scene.camera is None or scene.camera.type != "CAMERA":
+        return None
+    points = shot.reach_points(shot.camera_views(scene, scene.camera), reach)
+    low, high = points.min(0) - margin, points.max(0) + margin
+    low[2] = max(low[2], scene_bounds(scene, margin)[0][2])
+    high[2] = max(high[2], low[2] + margin)
+    return low, high
 
 
 def volume_color(coefficients):
@@ -219,14 +245,19 @@ def apply(scene, settings):
     world, replaced = ensure_sky(scene, elevation, azimuth)
     per_metre = air.rayleigh_coefficients(settings.density, tuple(settings.wavelengths))
     coefficients = np.asarray(per_metre) * units.metres_per_unit(scene)
-    low, high = scene_bounds(scene, settings.margin)
+    ground = scene_bounds(scene, 0.0)[0][2]
     field = None
     if settings.use_wind:
         field = {"Wind": tuple(settings.wind), "Scale": settings.dust_scale, "Coverage": settings.coverage,
-                 "Softness": settings.softness, "Ground": float(low[2] + settings.margin),
-                 "Falloff": settings.falloff}
+                 "Softness": settings.softness, "Ground": float(ground), "Falloff": settings.falloff}
     dust = {"scatter": settings.dust_density * units.metres_per_unit(scene),
             "anisotropy": settings.anisotropy, "field": field}
+    # Sized to the shot: a box fitted to the geometry ended in a visible edge (a 4 m slab over
+    # the demo's dunes, a glowing square round a lone cube). Wind-lifted dust covers about
+    # Coverage of the air, so its haze reaches that much further.
+    extinction = (coefficients + dust["scatter"]) * (settings.coverage if field else 1.0)
+    bounds = shot_bounds(scene, haze_reach(scene, extinction), settings.margin)
+    low, high = bounds if bounds is not None else scene_bounds(scene, settings.margin)
     box = ensure_volume(scene, coefficients, low, high, dust)
     sand.set_wind(scene, settings.wind)  # one wind for the dust and the sand's ripples
     if box is not None and field is not None:

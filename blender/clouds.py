@@ -20,9 +20,9 @@ from ..node_groups import cloud_density, weather_map
 from ..node_groups import helper as h
 from . import atmosphere, units
 from . import ownership as own
+from .shot import camera_views
 
 CELLS = 48  # grid cells along each side of the layer's box
-FRAME_SAMPLES = 16  # camera positions sampled over the frame range
 
 def scene_settings(scene):
     """scene.sandscape_clouds as apply() takes it: lengths in scene units, the image by name."""
@@ -31,33 +31,6 @@ def scene_settings(scene):
               if p.identifier not in ("rna_type", "name", "weather_image")}
     values["weather_image"] = stored.weather_image.name if stored.weather_image else ""
     return values
-
-
-def camera_views(scene, camera):
-    """The camera's world matrix and frame at up to FRAME_SAMPLES frames of the scene's range
-    (one when nothing animates it), as core.clouds.frame_rays wants them."""
-    animated = any(o.animation_data is not None or o.constraints for o in _chain(camera))
-    animated = animated or camera.data.animation_data is not None
-    frames = [scene.frame_current]
-    if animated:
-        sampled = np.linspace(scene.frame_start, scene.frame_end, FRAME_SAMPLES)
-        frames = sorted({int(round(f)) for f in sampled} | {scene.frame_current})
-    current, views = scene.frame_current, []
-    for frame in frames:
-        if frame != scene.frame_current:
-            scene.frame_set(frame)
-        corners = [tuple(v) for v in camera.data.view_frame(scene=scene)]
-        views.append({"matrix": np.array(camera.matrix_world), "ortho": camera.data.type == "ORTHO",
-                      "corners": corners})
-    if scene.frame_current != current:
-        scene.frame_set(current)
-    return views
-
-
-def _chain(obj):
-    while obj is not None:
-        yield obj
-        obj = obj.parent
 
 
 def parameters(scene, s):

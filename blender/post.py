@@ -26,6 +26,7 @@ from . import ownership as own
 SUN_COLOR = (1.0, 0.93, 0.8, 1.0)
 SUN_KEY, RAYS = "Sandscape Sun Key", "Sandscape God Rays"  # node names
 DENOISE, DENOISE_VOLUME = "Sandscape Denoise", "Sandscape Denoise Scattered"
+WHITE = "Sandscape Display White"
 GLINT_AOV = sand.GLINT_AOV  # the sand material writes where grains can glint
 
 
@@ -37,7 +38,12 @@ def sun_key_node(tree):
     return own.node(tree, SUN_KEY)
 
 
-def build(tree, settings):
+def display_white(scene):
+    """The linear value the view shows as white: 2^-exposure."""
+    return 2.0 ** -scene.view_settings.exposure
+
+
+def build(tree, settings, white=1.0):
     """(Re)build the tree for the settings: use_denoise, use_blur, blur_threshold, use_god_rays, ..."""
     tree.nodes.clear()
     if not tree.interface.items_tree:
@@ -61,9 +67,15 @@ def build(tree, settings):
                           inputs={"Density": settings.ray_density, "Weight": settings.ray_weight,
                                   "Decay": settings.ray_decay, "Exposure": settings.ray_exposure})
         h.link(tree, _occlusion(tree, layers, rays, settings.disc_radius), rays.inputs["Occlusion"])
+        # In display units: Exposure 1 gives the same rays at any scene exposure (the demo's
+        # -2.7 had left the default rays at a mean change of 0.0006).
+        scale = h.add_node(tree, "ShaderNodeValue", name=WHITE, label="Display White (keyed)")
+        scale.outputs[0].default_value = white
+        shown = h.vector_math(tree, "SCALE", rays.outputs["Rays"], label="× Display White")
+        h.link(tree, scale.outputs[0], shown.inputs["Scale"])
         total = h.add_node(tree, "ShaderNodeVectorMath", label="+ God Rays", operation="ADD")
         h.link(tree, image, total.inputs[0])
-        h.link(tree, rays.outputs["Rays"], total.inputs[1])
+        h.link(tree, shown.outputs[0], total.inputs[1])
         image = total.outputs[0]
     # Vector maths leave alpha at 1: the render's own alpha goes back on (Film > Transparent).
     alpha = h.add_node(tree, "CompositorNodeSetAlpha", name="Sandscape Keep Alpha", label="Keep Alpha",
@@ -275,6 +287,9 @@ def refresh_sun_keys(scene):
     tree = own.scene_compositor(scene)
     if tree is None or rays_node(tree) is None or sun_key_node(tree) is None:
         return False
+    white = own.node(tree, WHITE)
+    if white is not None:  # the exposure may have changed since the tree was built
+        white.outputs[0].default_value = display_white(scene)
     sun = atmosphere.scene_sun(scene)
     if sun is None or scene.camera is None:
         return False
@@ -343,7 +358,7 @@ def apply_post_effects(scene, settings):
     switched_denoiser = settings.use_denoise and scene.cycles.use_denoising
     if settings.use_denoise:
         scene.cycles.use_denoising = False
-    build(ours, settings)
+    build(ours, settings, display_white(scene))
     ours["fade"] = settings.fade
     scene.compositing_node_group = ours
     scene.render.use_compositing = True

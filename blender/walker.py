@@ -1,5 +1,6 @@
-"""The stand-in walker: a box on a Follow Path constraint along a gentle S-shaped curve, for
-artists without a rig. Any animated object works as a walker; this one is only a start.
+"""The stand-in walker: a box on a Follow Path constraint along a gentle S-shaped curve at a
+walking pace, the path laid on the evaluated terrain every PATH_STEP, for artists without a
+rig. Any animated object works as a walker; this one is only a start.
 
 Both objects are ours (OBJECT_KEY "walker" and "walk_path") and found in the scene the
 operator runs in, so running it again updates them and another scene gets its own.
@@ -11,11 +12,14 @@ import bpy
 import numpy as np
 from bpy_extras import anim_utils
 from mathutils import Vector
+from mathutils.bvhtree import BVHTree
 
 from . import ownership as own
 from . import units
 
-WALK_SPEED = 1.4  # metres per second, a walking pace, for the stand-in when there is no terrain
+WALK_SPEED = 1.4  # metres per second: a walking pace
+PATH_STEP = 0.25  # metres between path points laid on the ground
+TERRAIN_SHARE = 0.8  # the walk never leaves the middle 80 % of the terrain (slower if it must)
 BOX = (0.4, 0.3, 1.7)  # metres: a person-sized stand-in
 
 
@@ -29,8 +33,10 @@ def ensure_walker(scene, terrain, start, end):
     """The scene's stand-in walker and its path, made or updated. Returns (walker, path)."""
     path = own.scene_object(scene, own.WALK_PATH) or _new_path(scene)
     fps = scene.render.fps / scene.render.fps_base
-    _shape_path(path, terrain, units.to_units(scene, (end - start) / fps * WALK_SPEED))
+    _shape_path(path, terrain, units.to_units(scene, (end - start) / fps * WALK_SPEED),
+                units.to_units(scene, PATH_STEP))
     walker = own.scene_object(scene, own.WALKER) or _new_walker(scene, path)
+    _stay_upright(walker)
     _animate(walker, start, end)
     return walker, path
 
@@ -43,24 +49,53 @@ def _new_path(scene):
     return path
 
 
-def _shape_path(path, terrain, length):
-    """A gentle S across the terrain (80 % of its world X extent), or `length` units along X."""
+def _shape_path(path, terrain, length, step):
+    """A gentle S `length` units along X through the terrain's middle (at most TERRAIN_SHARE of
+    its world X extent), or through the origin without a terrain."""
+    centre, top = np.zeros(3), 0.0
     if terrain is not None:
         corners = np.array([terrain.matrix_world @ Vector(c) for c in terrain.bound_box])
         low, high = corners.min(0), corners.max(0)
         centre, extent, top = (low + high) / 2, high - low, high[2]
-        length = 0.8 * extent[0]
-        sway = 0.15 * extent[1]
-    else:
-        centre, top, sway = np.zeros(3), 0.0, 0.1 * length
+        length = min(length, TERRAIN_SHARE * extent[0])
+    sway = 0.1 * length
+    count = 4 if terrain is None else max(4, int(math.ceil(length / step)) + 1)
+    t = np.linspace(0.0, 1.0, count)
+    points = np.stack([centre[0] + (t - 0.5) * length, centre[1] + sway * np.sin(2 * math.pi * t),
+                       np.full(count, top)], axis=-1)
+    if terrain is not None:
+        points[:, 2] = ground_heights(terrain, points[:, :2], top)
     curve = path.data
     curve.splines.clear()
     spline = curve.splines.new("BEZIER")
-    spline.bezier_points.add(3)
-    for index, point in enumerate(spline.bezier_points):
-        t = index / 3
-        point.co = (centre[0] + (t - 0.5) * length, centre[1] + sway * math.sin(2 * math.pi * t), top)
+    spline.bezier_points.add(count - 1)
+    for point, co in zip(spline.bezier_points, points, strict=True):
+        point.co = tuple(co)
         point.handle_left_type = point.handle_right_type = "AUTO"
+
+
+def ground_heights(terrain, xy, fallback):
+    """World Z of the terrain's evaluated surface under each (x, y); the original mesh where the
+    evaluated one has none (the footprint cut leaves a hole where the patch takes over), else
+    `fallback`. The walk path is laid on these, so the stand-in's feet touch the ground."""
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    evaluated = terrain.evaluated_get(depsgraph)
+    world = np.array(terrain.matrix_world)
+    to_local = np.linalg.inv(world)
+    mesh = terrain.data
+    original = BVHTree.FromPolygons([v.co for v in mesh.vertices], [p.vertices for p in mesh.polygons])
+    heights = np.full(len(xy), float(fallback))
+    top = np.max(np.array([world @ np.r_[c[:], 1.0] for c in terrain.bound_box])[:, 2]) + 1.0
+    down = to_local[:3, :3] @ np.array([0.0, 0.0, -1.0])
+    for index, (x, y) in enumerate(xy):
+        origin = Vector((to_local @ np.array([x, y, top, 1.0]))[:3])
+        hit, location, *_ = evaluated.ray_cast(origin, Vector(down))
+        if not hit:
+            location, *_ = original.ray_cast(origin, Vector(down))
+            hit = location is not None
+        if hit:
+            heights[index] = (world @ np.r_[location[:], 1.0])[2]
+    return heights
 
 
 def _new_walker(scene, path):
@@ -78,6 +113,17 @@ def _new_walker(scene, path):
     follow.use_fixed_location = True
     follow.forward_axis = "FORWARD_X"
     return walker
+
+
+def _stay_upright(walker):
+    """A walker turns along the path but stands upright on a slope (the path follows the dunes)."""
+    upright = next((c for c in walker.constraints if c.type == "LIMIT_ROTATION"), None)
+    if upright is None:
+        upright = walker.constraints.new("LIMIT_ROTATION")
+        upright.name = "Sandscape Stand Upright"
+    upright.use_limit_x = upright.use_limit_y = True
+    upright.min_x = upright.max_x = upright.min_y = upright.max_y = 0.0
+    upright.owner_space = "WORLD"
 
 
 def _animate(walker, start, end):

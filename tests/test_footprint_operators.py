@@ -7,6 +7,7 @@ import tempfile
 import bpy
 import numpy as np
 import pytest
+from mathutils import Vector
 
 from devtools import operators, readback, scenes
 
@@ -186,7 +187,35 @@ def test_add_walker_makes_a_walk_that_paints(walk):
     walkers = [o for o in bpy.data.objects if o.get("sandscape_object") == "walker"]
     assert len(walkers) == 1 and walk.walker == walkers[0]
     assert bpy.ops.sandscape.paint_footprints() == {"FINISHED"}
-    assert len(ours("points")[0].data.vertices) >= 6  # 80 % of 6 m at 0.7 m, plus the S
+    assert len(ours("points")[0].data.vertices) >= 2  # 1.25 s at a walking pace, 0.7 m strides
+
+
+def test_the_stand_in_walks_at_a_walking_pace_on_the_ground(walk):
+    """1.2-1.6 m/s whatever the terrain's size, feet on the (evaluated, tilted) terrain, upright."""
+    walk.terrain.rotation_euler.x = math.radians(8)  # a slope
+    scene = bpy.context.scene
+    scene.frame_start, scene.frame_end = 1, 97  # 4 s
+    assert bpy.ops.sandscape.add_walker() == {"FINISHED"}
+    walker = walk.walker
+    positions, tilts = [], []
+    for frame in range(1, 98, 4):
+        scene.frame_set(frame)
+        positions.append(np.array(walker.matrix_world.translation))
+        tilts.append(walker.matrix_world.col[2][2])  # the box's up axis against world Z
+    positions = np.array(positions)
+    speed = np.linalg.norm(np.diff(positions, axis=0), axis=1) * 24 / 4
+    print(f"stand-in speed {speed.min():.2f}-{speed.max():.2f} m/s")
+    assert 1.2 <= speed.min() and speed.max() <= 1.6
+    assert min(tilts) >= 0.9999
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    terrain = walk.terrain.evaluated_get(depsgraph)
+    to_local = walk.terrain.matrix_world.inverted()
+    for x, y, z in positions:
+        origin = to_local @ Vector((x, y, z + 10.0))
+        hit, location, *_ = terrain.ray_cast(origin, to_local.to_3x3() @ Vector((0.0, 0.0, -1.0)))
+        assert hit
+        ground = (walk.terrain.matrix_world @ location).z
+        assert abs(z - ground) <= 0.02, (z, ground)  # within 2 cm between path points 25 cm apart
 
 
 def test_progress_only_moves_forward(sandscape, walk):

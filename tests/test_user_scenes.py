@@ -41,6 +41,7 @@ def test_a_second_scene_gets_its_own_sun_sky_dust_and_compositor():
     second.collection.objects.link(plane)
     camera = bpy.data.objects.new("Second Camera", bpy.data.cameras.new("Second Camera"))
     second.collection.objects.link(camera)
+    camera.location = (50.0, 50.0, 5.0)  # looking straight down on its plane
     second.camera = camera
     second.sandscape_atmosphere.sun_elevation = math.radians(40)
     with bpy.context.temp_override(scene=second):
@@ -49,7 +50,8 @@ def test_a_second_scene_gets_its_own_sun_sky_dust_and_compositor():
     assert (tuple(box.location), tuple(box.scale), first.world, first.compositing_node_group) == kept
     second_box = ours(bpy.data.objects, "dust_volume", second)
     assert len(second_box) == 1 and second_box[0] != box
-    assert second_box[0].location.x > 40 and box.location.x < 10  # each box around its own scene
+    # Each box around its own camera's view.
+    assert 40 < second_box[0].location.x < 60 and abs(box.location.x) < 10
     assert second.world != first.world and second.compositing_node_group != first.compositing_node_group
     sun_first, sun_second = (ours(bpy.data.objects, "sun", s)[0] for s in (first, second))
     assert sun_first != sun_second
