@@ -1,7 +1,9 @@
 """The bpy side of the atmosphere: the sun lamp, the sky world, the bounded dust volume.
 
 A world volume would block a sun lamp completely in Cycles (the world volume is infinite), so
-with a sun the scattering medium is a box fitted around the scene. Everything is found in the
+with a sun the scattering medium is a box fitted to what the camera sees over the frame range,
+out to where the haze lets 1 % through (around the geometry without a camera). Moving the
+camera afterwards means running Add Atmosphere again. Everything is found in the
 scene being set up: another scene gets its own sun, sky and dust box.
 """
 

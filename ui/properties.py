@@ -143,7 +143,8 @@ class SandscapeAtmosphereSettings(bpy.types.PropertyGroup):
     softness: FloatProperty(name="Softness", default=0.08, soft_min=0.001, soft_max=0.5,
                             description="Width of the patch edges")
     falloff: length("falloff_m", "Height Falloff", 1.5, "Height over which dust thins by 1/e", 50.0)
-    margin: length("margin_m", "Margin", 2.0, "How far the dust box reaches beyond the scene", 100.0)
+    margin: length("margin_m", "Margin", 2.0, "How far the dust box reaches beyond the camera's view "
+                   "(the scene, without a camera)", 100.0)
 
 
 CLOUD_TYPES = (("STRATUS", "Stratus", "Low, flat sheets"),
