@@ -16,8 +16,9 @@ FRAME = 150
 # Blender under test, both rendered here at 2 spp with the same seed and sampling pattern: the
 # same scene data give the same pixels to round-off. Measured: 0.0 on 5.2, 7.6e-6 on 5.0 (pixels
 # reach 6.7e5 in the sun disc). What opening the 5.2 file in 5.0 once lost, a compositor link
-# from a socket type 5.0 does not know, moved pixels by 8.3.
-SAME_SCENE_TOLERANCE = 1e-4
+# from a socket type 5.0 does not know, moved pixels by 8.3. With OpenImageDenoise in the
+# compositor the 5.0 difference grew to 3.1e-4 (pixels up to 4.5; the denoiser's round-off).
+SAME_SCENE_TOLERANCE = 1e-3
 
 
 def small_render(scene):
