@@ -137,14 +137,14 @@ def haze_reach(scene, extinction):
     return min(cap, math.log(1.0 / CLEAR) / clearest)
 
 
-def shot_bounds(scene, reach, margin):
-    """The box the camera looks through over the frame range, `reach` deep; its floor is the
-    scene's lowest geometry (the rays stop at the ground). None without a camera."""
+def shot_bounds(scene, reach, margin, floor):
+    """The box the camera looks through over the frame range, `reach` deep, no lower than
+    `floor` (the rays stop at the ground). None without a camera."""
     if scene.camera is None or scene.camera.type != "CAMERA":
         return None
     points = shot.reach_points(shot.camera_views(scene, scene.camera), reach)
     low, high = points.min(0) - margin, points.max(0) + margin
-    low[2] = max(low[2], scene_bounds(scene, margin)[0][2])
+    low[2] = max(low[2], floor)
     high[2] = max(high[2], low[2] + margin)
     return low, high
 
@@ -247,7 +247,8 @@ def apply(scene, settings):
     world, replaced = ensure_sky(scene, elevation, azimuth)
     per_metre = air.rayleigh_coefficients(settings.density, tuple(settings.wavelengths))
     coefficients = np.asarray(per_metre) * units.metres_per_unit(scene)
-    ground = scene_bounds(scene, 0.0)[0][2]
+    geometry_low, geometry_high = scene_bounds(scene, 0.0)
+    ground = geometry_low[2]
     field = None
     if settings.use_wind:
         field = {"Wind": tuple(settings.wind), "Scale": settings.dust_scale, "Coverage": settings.coverage,
@@ -258,8 +259,8 @@ def apply(scene, settings):
     # the demo's dunes, a glowing square round a lone cube). Wind-lifted dust covers about
     # Coverage of the air, so its haze reaches that much further.
     extinction = (coefficients + dust["scatter"]) * (settings.coverage if field else 1.0)
-    bounds = shot_bounds(scene, haze_reach(scene, extinction), settings.margin)
-    low, high = bounds if bounds is not None else scene_bounds(scene, settings.margin)
+    bounds = shot_bounds(scene, haze_reach(scene, extinction), settings.margin, ground - settings.margin)
+    low, high = bounds or (geometry_low - settings.margin, geometry_high + settings.margin)
     box = ensure_volume(scene, coefficients, low, high, dust)
     sand.set_wind(scene, settings.wind)  # one wind for the dust and the sand's ripples
     if box is not None and field is not None:

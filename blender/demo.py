@@ -64,6 +64,7 @@ def build(context):
     """
     scene = context.scene
     scene.frame_start, scene.frame_end = FRAMES
+    # Its denoising comes with the post effects below, once there is a camera and a sun.
     presets.apply(scene, {k: v for k, v in presets.PRESETS["PREVIEW"].items() if k != presets.DENOISE})
     terrain = dune_terrain(scene.collection)
     context.view_layer.objects.active = terrain

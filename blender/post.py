@@ -103,9 +103,9 @@ def _blurred(tree, volume, settings):
     return blur.outputs["Image"]
 
 
-def _glint_light(tree, layers):
-    """(weight, light): the glints' light is the glossy and emitted light where a glinting grain
-    was hit; its weight says how far it outshines the rest of its pixel.
+def _sparkle_weight(tree, layers):
+    """How far each pixel sparkles: the glints' light (glossy and emitted light where a glinting
+    grain was hit) against the rest of the pixel.
 
     A grain's mirror is a Glossy closure (an emission in Emission mode), and the sand material
     writes where grains can glint into the AOV. OIDN takes a one-pixel sparkle for noise and
@@ -129,7 +129,7 @@ def _glint_light(tree, layers):
                            inputs={"From Min": 1.0, "From Max": 2.0, "To Min": 0.0, "To Max": 1.0})
     h.link(tree, ratio.outputs[0], outshines.inputs["Value"])
     weight = h.math(tree, "MULTIPLY", grains.outputs[0], outshines.outputs["Result"], label="Sparkle Weight")
-    return weight.outputs[0], lit.outputs[0]
+    return weight.outputs[0]
 
 
 def _luminance(tree, color):
@@ -157,20 +157,18 @@ def _denoised(tree, layers, settings):
     0.0086 in the demo at 16 samples).
     """
     image = layers.outputs["Image"]
-    weight, _ = _glint_light(tree, layers)
-    rest = image
     if not settings.use_blur:
-        clean = _denoise(tree, rest, layers, DENOISE)
+        clean = _denoise(tree, image, layers, DENOISE)
     else:
         # Denoised light under the blur: raw scattered light swapped back into a denoised
         # image put its noise back (σ 0.019 against 0.0044, issue 14).
-        volume = _scattered(tree, layers, rest)
-        surfaces = h.vector_math(tree, "SUBTRACT", rest, volume, label="− Scattered").outputs[0]
+        volume = _scattered(tree, layers, image)
+        surfaces = h.vector_math(tree, "SUBTRACT", image, volume, label="− Scattered").outputs[0]
         clean_volume = _blurred(tree, _denoise(tree, volume, name=DENOISE_VOLUME), settings)
         clean = h.vector_math(tree, "ADD", _denoise(tree, surfaces, layers, DENOISE), clean_volume,
                               label="+ Scattered, Denoised and Blurred").outputs[0]
     sparkling = h.add_node(tree, "ShaderNodeMix", label="Sparkles Raw", data_type="RGBA")
-    h.link(tree, weight, sparkling.inputs["Factor"])
+    h.link(tree, _sparkle_weight(tree, layers), sparkling.inputs["Factor"])
     h.link(tree, clean, h.socket(sparkling.inputs, "A"))
     h.link(tree, image, h.socket(sparkling.inputs, "B"))
     return sparkling.outputs["Result"]

@@ -265,7 +265,7 @@ def _glint_aov(material, glint):
     aov = own.node(tree, GLINT_AOV_NODE)
     if aov is None:
         aov = h.add_node(tree, "ShaderNodeOutputAOV", name=GLINT_AOV_NODE, label="Glint AOV")
-        aov.location = glint.location + type(glint.location)((0.0, -300.0))
+        aov.location = (glint.location.x, glint.location.y - 300.0)  # under the glints it reads
     aov.aov_name = GLINT_AOV
     if not aov.inputs["Value"].is_linked:
         h.link(tree, glint.outputs["Mask"], aov.inputs["Value"])

@@ -74,24 +74,26 @@ def _shape_path(path, terrain, length, step):
         point.handle_left_type = point.handle_right_type = "AUTO"
 
 
-def ground_heights(terrain, xy, fallback):
-    """World Z of the terrain's evaluated surface under each (x, y); the original mesh where the
-    evaluated one has none (the footprint cut leaves a hole where the patch takes over), else
-    `fallback`. The walk path is laid on these, so the stand-in's feet touch the ground."""
-    depsgraph = bpy.context.evaluated_depsgraph_get()
-    evaluated = terrain.evaluated_get(depsgraph)
+def ground_heights(terrain, xy, top):
+    """World Z of the terrain's evaluated surface under each (x, y), cast down from above `top`
+    (its highest point); the original mesh where the evaluated one has none (the footprint cut
+    leaves a hole where the patch takes over), else `top`. The walk path is laid on these, so
+    the stand-in's feet touch the ground."""
+    evaluated = terrain.evaluated_get(bpy.context.evaluated_depsgraph_get())
     world = np.array(terrain.matrix_world)
     to_local = np.linalg.inv(world)
-    mesh = terrain.data
-    original = BVHTree.FromPolygons([v.co for v in mesh.vertices], [p.vertices for p in mesh.polygons])
-    heights = np.full(len(xy), float(fallback))
-    top = np.max(np.array([world @ np.r_[c[:], 1.0] for c in terrain.bound_box])[:, 2]) + 1.0
-    down = to_local[:3, :3] @ np.array([0.0, 0.0, -1.0])
+    down = Vector(to_local[:3, :3] @ np.array([0.0, 0.0, -1.0]))
+    original = None  # built only when a ray falls through a hole
+    heights = np.full(len(xy), float(top))
     for index, (x, y) in enumerate(xy):
-        origin = Vector((to_local @ np.array([x, y, top, 1.0]))[:3])
-        hit, location, *_ = evaluated.ray_cast(origin, Vector(down))
+        origin = Vector((to_local @ np.array([x, y, top + 1.0, 1.0]))[:3])
+        hit, location, *_ = evaluated.ray_cast(origin, down)
         if not hit:
-            location, *_ = original.ray_cast(origin, Vector(down))
+            if original is None:
+                mesh = terrain.data
+                original = BVHTree.FromPolygons([v.co for v in mesh.vertices],
+                                                [p.vertices for p in mesh.polygons])
+            location, *_ = original.ray_cast(origin, down)
             hit = location is not None
         if hit:
             heights[index] = (world @ np.r_[location[:], 1.0])[2]
