@@ -1,18 +1,20 @@
 """Quality presets benchmark: render time against error for the demo at many settings.
 
-The demo frame at 240x135 against a reference at REFERENCE_SPP samples (unbiased volumes, no
-denoising, no adaptive sampling). Rows: a grid over samples, denoising and volume ray
-marching; the preview preset with one other setting changed (adaptive threshold, dicing rate,
-bounces, volume step rate); Blender's 5.0 defaults; and each Sandscape preset. Writes the curves to
+The demo frame at 160x90 through its compositor against a high-sample reference (unbiased
+volumes, no denoising, no adaptive sampling). Rows: a grid over samples and routes (raw, Cycles'
+OIDN, the tree's denoising of all but the glints; ray-marched or unbiased volumes); with --axes,
+the preview preset with one other setting changed (adaptive threshold, dicing rate, bounces,
+volume step rate); Blender's defaults; and each Sandscape preset. Writes the curves to
 bench/quality.png (matplotlib, from requirements-bench.txt) and appends the table to
 bench/RESULTS.md.
 
-Run: .venv/bin/python bench/quality.py [--quick] [--no-append]
+Run: .venv/bin/python bench/quality.py [--quick] [--axes] [--no-append]
 """
 
 import argparse
 import pathlib
 import sys
+import tempfile
 import time
 
 import numpy as np
@@ -22,23 +24,41 @@ sys.path.insert(0, str(REPO))
 
 from devtools import results, session  # noqa: E402
 
-RESOLUTION = (240, 135)
+RESOLUTION = (160, 90)
 FRAME = 150
 # Knobs besides samples, denoising and volume sampling, each swept alone around the preview preset.
 AXES = (("adaptive_threshold", (0.01, 0.05, 0.1)), ("dicing_rate", (0.5, 2.0, 4.0)),
         ("max_bounces", (2, 4, 8)), ("volume_step_rate", (0.5, 2.0, 4.0)))
+# The light paths the reference converges to: the final preset's (clouds brighten with volume
+# bounces up to about 128, bench/clouds.py). Blender's sampling recipe is held to the same paths.
+LIGHT_PATHS = {"volume_bounces": 128, "max_bounces": 128}
+NOISE_RESOLUTION, NOISE_FRAME = (320, 180), 160
 
 
-def render(readback, scene, settings, presets):
-    presets.apply(scene, settings)
+def render(readback, scene, settings, presets, seed=0):
+    # Every route names its denoising: the demo's tree would otherwise denoise what Cycles did.
+    presets.apply(scene, {presets.DENOISE: False, **settings})
+    scene.cycles.seed = seed
     started = time.perf_counter()
     pixels = readback.render(scene)[..., :3]
     return time.perf_counter() - started, pixels
 
 
+def routes(presets, samples):
+    """(label, settings) of the grid at `samples`: raw, Cycles' OIDN and ours, all with the demo's
+    ray-marched volumes, and raw with unbiased volumes."""
+    fixed = dict(presets.BLENDER_DEFAULTS, **LIGHT_PATHS, samples=samples, use_adaptive_sampling=False)
+    return [(f"{samples} spp, raw, unbiased", dict(fixed, use_denoising=False, volume_biased=False)),
+            (f"{samples} spp, raw, ray march", dict(fixed, use_denoising=False, volume_biased=True)),
+            (f"{samples} spp, OIDN, ray march", dict(fixed, use_denoising=True, volume_biased=True)),
+            (f"{samples} spp, all but glints denoised, ray march",
+             dict(fixed, use_denoising=False, volume_biased=True, **{presets.DENOISE: True}))]
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="a smaller grid and a lower reference")
+    parser.add_argument("--axes", action="store_true", help="also sweep the preview preset's other knobs")
     parser.add_argument("--no-append", action="store_true")
     args = parser.parse_args(argv)
     root = session.isolate()
@@ -54,37 +74,40 @@ def main(argv=None):
     bpy.ops.sandscape.build_demo_scene()
     scene = bpy.context.scene
     scene.render.resolution_x, scene.render.resolution_y = RESOLUTION
+    scene.render.resolution_percentage = 100
     scene.frame_set(FRAME)
-    reference_spp = 512 if args.quick else 2048
-    base = dict(presets.BLENDER_DEFAULTS, samples=reference_spp, use_adaptive_sampling=False,
-                use_denoising=False)
-    _, reference = render(readback, scene, base, presets)
-
+    reference_spp = 256 if args.quick else 1024
+    base = dict(presets.BLENDER_DEFAULTS, **LIGHT_PATHS, samples=reference_spp // 2,
+                use_adaptive_sampling=False, use_denoising=False)
+    # Two halves with other seeds: their mean is the reference, their difference its own noise,
+    # which is taken out of every RMSE below (it would otherwise set a floor under them).
+    _, half = render(readback, scene, base, presets, seed=0)
+    _, other = render(readback, scene, base, presets, seed=1)
+    reference = (half + other) / 2
     white = 2.0 ** -scene.view_settings.exposure
+    reference_noise = results.clipped_rmse(half, other, white) / 2
 
     def rmse(pixels):
-        return results.display_rmse(pixels, reference, scene.view_settings.exposure)
+        raw = results.display_rmse(pixels, reference, scene.view_settings.exposure)
+        return float(np.sqrt(max(raw ** 2 - reference_noise ** 2, 0.0)))
 
-    counts = (4, 16, 64) if args.quick else (4, 8, 16, 32, 64, 128, 256)
+    counts = (16, 64, 256) if args.quick else (16, 32, 64, 128, 256)
     rows = []
     # Blender's default recipe (adaptive 0.01, OIDN, unbiased volumes) at fewer samples: the
     # time the defaults need for a preset's error is read off this curve.
-    for samples in (16, 64, 256) if args.quick else (16, 32, 64, 128, 256, 512, 1024):
-        seconds, pixels = render(readback, scene, dict(presets.BLENDER_DEFAULTS, samples=samples), presets)
+    for samples in (16, 64, 256) if args.quick else (16, 64, 256, 1024):
+        settings = dict(presets.BLENDER_DEFAULTS, **LIGHT_PATHS, samples=samples)
+        seconds, pixels = render(readback, scene, settings, presets)
         label = f"{samples} spp, adaptive 0.01, OIDN, unbiased"
         rows.append(("defaults curve", label, seconds, rmse(pixels)))
         print(rows[-1], flush=True)
-    for denoise, biased in ((False, False), (False, True), (True, True)):
-        for samples in counts:
-            settings = dict(presets.BLENDER_DEFAULTS, samples=samples, use_adaptive_sampling=False,
-                            use_denoising=denoise, volume_biased=biased)
+    for samples in counts:
+        for label, settings in routes(presets, samples):
             seconds, pixels = render(readback, scene, settings, presets)
-            volumes = "ray march" if biased else "unbiased"
-            label = f"{samples} spp, {'OIDN' if denoise else 'raw'}, {volumes}"
             rows.append(("grid", label, seconds, rmse(pixels)))
             print(rows[-1], flush=True)
     # One setting at a time away from the preview preset: the other knobs a preset sets.
-    for key, values in AXES:
+    for key, values in AXES if args.axes else ():
         for value in values:
             settings = dict(presets.PRESETS["PREVIEW"], **{key: value})
             if key == "adaptive_threshold":
@@ -92,7 +115,7 @@ def main(argv=None):
             seconds, pixels = render(readback, scene, settings, presets)
             rows.append(("preview with", f"{key}={value}", seconds, rmse(pixels)))
             print(rows[-1], flush=True)
-    seconds, pixels = render(readback, scene, presets.BLENDER_DEFAULTS, presets)
+    seconds, pixels = render(readback, scene, dict(presets.BLENDER_DEFAULTS, **LIGHT_PATHS), presets)
     rows.append(("Blender defaults", "4096 spp, adaptive 0.01, OIDN, unbiased", seconds, rmse(pixels)))
     print(rows[-1], flush=True)
     for name, settings in presets.PRESETS.items():
@@ -100,22 +123,64 @@ def main(argv=None):
         rows.append((f"preset {name.lower()}", ", ".join(f"{k}={v}" for k, v in settings.items()), seconds,
                      rmse(pixels)))
         print(rows[-1], flush=True)
+    # The noise a viewer sees: two seeds of the demo's still frame at the size the README shows.
+    scene.render.resolution_x, scene.render.resolution_y = NOISE_RESOLUTION
+    scene.frame_set(NOISE_FRAME)
+    plain = dict(presets.PRESETS["PREVIEW"], samples=16, **{presets.DENOISE: False})
+    noise = [("plain 16 spp, raw", *noise_sigma(readback, scene, plain, presets))]
+    for name, settings in presets.PRESETS.items():
+        noise.append((f"preset {name.lower()}", *noise_sigma(readback, scene, settings, presets)))
+        print(noise[-1], flush=True)
     defaults = next(r for r in rows if r[0] == "Blender defaults")
     curve = sorted((s, e) for kind, _, s, e in rows if kind in ("defaults curve", "Blender defaults"))
-    lines = [results.heading("Quality", ["--quick"] if args.quick else []),
-             f"{results.machine()}. Demo frame {FRAME} at {RESOLUTION[0]}x{RESOLUTION[1]}; "
-             f"reference {reference_spp} spp raw, unbiased volumes; RMSE of linear pixels clipped at "
-             f"the display's white ({white:g} at exposure {scene.view_settings.exposure:g}).\n",
+    flags = (["--quick"] if args.quick else []) + (["--axes"] if args.axes else [])
+    lines = [results.heading("Quality", flags),
+             f"{results.machine()}. Demo frame {FRAME} at {RESOLUTION[0]}x{RESOLUTION[1]}, through its "
+             f"compositor (god rays, gated blur); volume bounces {LIGHT_PATHS['volume_bounces']} unless a "
+             f"preset says otherwise. Reference: two {reference_spp // 2}-spp raw renders with other seeds, "
+             "unbiased volumes, averaged; RMSE of linear pixels clipped at the display's white "
+             f"({white:g} at exposure {scene.view_settings.exposure:g}), the reference's own noise "
+             f"({reference_noise:.5f}) taken out in quadrature.\n",
              "| kind | settings | render s | RMSE | vs Blender defaults |", "|---|---|---|---|---|"]
     for kind, label, seconds, error in rows:
         versus = f"{defaults[2] / seconds:.1f}x faster, RMSE {error / defaults[3]:.2f}x"
-        if kind.startswith("preset"):
+        if kind.startswith("preset") or "denoised" in label:
             equal = time_for_error(curve, error)
             versus += (f"; the defaults need {equal:.1f} s for this RMSE: {equal / seconds:.1f}x faster"
                        if equal else "; outside the measured defaults curve")
         lines.append(f"| {kind} | {label} | {seconds:.2f} | {error:.5f} | {versus} |")
+    lines += [f"\nNoise: demo frame {NOISE_FRAME} at {NOISE_RESOLUTION[0]}x{NOISE_RESOLUTION[1]}, sigma of "
+              "display values from two seeds (std of the difference / sqrt 2, 16-bit PNG).\n",
+              "| render | s | sigma | time vs plain 16 spp |", "|---|---|---|---|"]
+    lines += [f"| {label} | {seconds:.1f} | {sigma:.4f} | {seconds / noise[0][1]:.1f}x |"
+              for label, seconds, sigma in noise]
     results.publish(lines, append=not args.no_append)
     plot(rows, REPO / "bench" / "quality.png")
+
+
+def noise_sigma(readback, scene, settings, presets):
+    """(seconds of one render, sigma): the noise of display values, from two seeds' renders of the
+    16-bit display PNG (sigma = std(a - b) / sqrt 2)."""
+    import bpy
+
+    frames = []
+    for seed in (0, 1):
+        presets.apply(scene, {presets.DENOISE: False, **settings})
+        scene.cycles.seed = seed
+        image_settings = scene.render.image_settings
+        image_settings.file_format, image_settings.color_depth, image_settings.color_mode = "PNG", "16", "RGB"
+        with tempfile.TemporaryDirectory(prefix="sandscape-noise-") as tmp:
+            scene.render.filepath = str(pathlib.Path(tmp) / "frame.png")
+            started = time.perf_counter()
+            bpy.ops.render.render(write_still=True, scene=scene.name)
+            seconds = time.perf_counter() - started
+            image = bpy.data.images.load(scene.render.filepath, check_existing=False)
+            image.colorspace_settings.name = "Non-Color"  # the display values as written
+            pixels = np.empty(image.size[0] * image.size[1] * 4, np.float32)
+            image.pixels.foreach_get(pixels)
+            bpy.data.images.remove(image)
+        frames.append(pixels.reshape(-1, 4)[:, :3].astype(np.float64))
+    return seconds, float(np.std(frames[0] - frames[1]) / np.sqrt(2.0))
 
 
 def time_for_error(curve, error):
@@ -137,12 +202,10 @@ def plot(rows, path):
         print("quality: matplotlib missing (pip install -r requirements-bench.txt); no plot")
         return
     figure, axes = plt.subplots(figsize=(7, 4.5), dpi=120)
-    for denoise in ("raw", "OIDN"):
-        for volumes in ("unbiased", "ray march"):
-            curve = [(s, e) for kind, label, s, e in rows
-                     if kind == "grid" and denoise in label and volumes in label]
-            if curve:
-                axes.plot(*zip(*curve, strict=True), marker="o", label=f"{denoise}, {volumes}")
+    for route in ("raw, unbiased", "raw, ray march", "OIDN, ray march", "all but glints denoised, ray march"):
+        curve = [(s, e) for kind, label, s, e in rows if kind == "grid" and label.endswith(route)]
+        if curve:
+            axes.plot(*zip(*curve, strict=True), marker="o", label=route)
     defaults = sorted((s, e) for kind, _, s, e in rows if kind in ("defaults curve", "Blender defaults"))
     axes.plot(*zip(*defaults, strict=True), marker="s", color="black",
               label="Blender defaults, fewer samples")

@@ -11,11 +11,13 @@ from . import atmosphere, clouds, footprints, post, presets, sand, walker
 TERRAIN_SIZE = (120.0, 60.0)  # wide enough that the camera never sees past the dunes
 TERRAIN_SPACING = 0.25
 FRAMES = (1, 240)
-SUN = (math.radians(6.0), math.radians(70.0))  # low, ahead of the walker and in view
-CAMERA_OFFSET = (-4.0, -2.5, 1.6)  # behind and beside the walker, metres: the prints read
+SUN = (math.radians(6.0), 0.85)  # low, ahead-left of the walker, in view: slopes lit from the side
+CAMERA_OFFSET = (-4.5, -1.5, 0.9)  # behind, beside and low, metres: the prints read in raking sun
+CAMERA_SHIFT = (0.05, 0.05)  # lens shift, not a tilt: the walker low in frame, the low sun in it
 AIR = {"density": 0.003, "dust_density": 0.002, "margin": 20.0}
-CLOUDS = {"coverage": 0.4, "seed": 4, "base": 700.0, "thickness": 1200.0, "step": 400.0,
-          "reach": 8000.0}  # low cumulus, in the sky band the camera sees above the haze
+CLOUDS = {"coverage": 0.4, "seed": 2, "base": 700.0, "thickness": 1200.0, "step": 400.0,
+          "reach": 8000.0}  # low cumulus above the haze; seed 2 leaves the sun clear of them all walk
+PRINTS = {"depth": 0.05, "rim": 0.015}  # metres: soft sand
 SAND = {"Threshold": 0.985, "Glint Size": 0.012, "Facing Power": 4.0, "Strength": 60.0, "Seed": 1.0}
 
 
@@ -42,8 +44,7 @@ def follow_camera(scene, walker):
     camera = bpy.data.objects.new("Demo Camera", bpy.data.cameras.new("Demo Camera"))
     camera.data.lens = 24.0
     camera.data.clip_end = 40000.0  # the clouds are kilometres away
-    # Lens shift, not a tilt: the walker stays in the lower half and the low sun comes into frame.
-    camera.data.shift_x, camera.data.shift_y = 0.1, 0.08
+    camera.data.shift_x, camera.data.shift_y = CAMERA_SHIFT
     scene.collection.objects.link(camera)
     scene.camera = camera
     camera.location = CAMERA_OFFSET
@@ -73,7 +74,9 @@ def build(context):
     steps.terrain = terrain
     steps.walker, path = walker.ensure_walker(scene, terrain, *FRAMES)  # 14 m in 10 s, on the dunes
     steps.source = "WALKER"
-    steps.resolution, steps.depth, steps.rim = 2048, 0.04, 0.01
+    steps.resolution = 2048
+    for name, value in PRINTS.items():
+        setattr(steps, name, value)
     footprints.paint(scene, steps)
     camera = follow_camera(scene, steps.walker)
     air = scene.sandscape_atmosphere

@@ -24,7 +24,7 @@ SUN, DUST_VOLUME, CLOUDS = "sun", "dust_volume", "clouds"
 WALKER, WALK_PATH = "walker", "walk_path"
 FOOTPRINTS, PATCH, PRINT_FRAME = "footprints", "footprint_patch", "print_frame"
 # Kinds of materials, images, worlds
-SAND, DUST, CLOUD_MATERIAL = "sand", "dust", "clouds"
+SAND, DUST, CLOUD_MATERIAL, CLOAK = "sand", "dust", "clouds", "cloak"
 GLINT_NOISE, PRINT_MAP = "glint_noise", "print_map"
 SKY = "sky"
 

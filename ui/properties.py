@@ -256,7 +256,7 @@ class SandscapePostSettings(bpy.types.PropertyGroup):
                          description="Samples along each ray: more is smoother and slower")
     ray_density: FloatProperty(name="Density", default=0.9, soft_min=0.0, soft_max=1.0,
                                description="Fraction of the way to the sun the samples span")
-    ray_weight: FloatProperty(name="Weight", default=0.05, soft_min=0.0, soft_max=1.0,
+    ray_weight: FloatProperty(name="Weight", default=0.1, soft_min=0.0, soft_max=1.0,
                               description="Weight of each sample")
     ray_decay: FloatProperty(name="Decay", default=0.97, soft_min=0.5, soft_max=1.0,
                              description="Falloff per sample; above 1 the rays would grow without bound")
