@@ -129,8 +129,9 @@ def haze_reach(scene, extinction):
     """Scene units after which the clearest channel lets less than CLEAR through; capped at
     MAX_REACH_M and at the camera's clip end (nothing beyond it is rendered)."""
     cap = units.to_units(scene, MAX_REACH_M)
-    if scene.camera is not None and scene.camera.type == "CAMERA":
-        cap = min(cap, scene.camera.data.clip_end)
+    camera = shot.scene_camera(scene)
+    if camera is not None:
+        cap = min(cap, camera.data.clip_end)
     clearest = float(np.min(extinction))
     if not clearest > 0.0:
         return cap
@@ -140,9 +141,10 @@ def haze_reach(scene, extinction):
 def shot_bounds(scene, reach, margin, floor):
     """The box the camera looks through over the frame range, `reach` deep, no lower than
     `floor` (the rays stop at the ground). None without a camera."""
-    if scene.camera is None or scene.camera.type != "CAMERA":
+    camera = shot.scene_camera(scene)
+    if camera is None:
         return None
-    points = shot.reach_points(shot.camera_views(scene, scene.camera), reach)
+    points = shot.reach_points(shot.camera_views(scene, camera), reach)
     low, high = points.min(0) - margin, points.max(0) + margin
     low[2] = max(low[2], floor)
     high[2] = max(high[2], low[2] + margin)

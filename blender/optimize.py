@@ -24,7 +24,8 @@ class Decision:
 
 def decisions(scene):
     found = []
-    for check in (_empty_volumes, _idle_adaptive_subdivision, _dark_glints, _idle_god_rays):
+    for check in (_empty_volumes, _empty_world_volume, _idle_adaptive_subdivision, _dark_glints,
+                  _idle_god_rays):
         found.extend(check(scene))
     found.extend(_idle_volume_bounces(scene, found))
     found.extend(_unused_passes(scene, found))
@@ -50,8 +51,11 @@ def _volume_density_zero(material):
     """True when a volume-only material is fed only by volume shaders of unlinked density 0."""
     tree = material.node_tree if material else None
     volume = _volume_output(tree)
-    if volume is None or volume.node.inputs["Surface"].is_linked:
-        return False
+    return volume is not None and not volume.node.inputs["Surface"].is_linked and _scatters_nothing(volume)
+
+
+def _scatters_nothing(volume):
+    """True when a Volume socket is fed only by volume shaders of unlinked density 0."""
     densities = [node.inputs.get("Density") for node in _upstream(volume)
                  if node.bl_idname in VOLUME_SHADERS or node.bl_idname == "ShaderNodeGroup"]
     return bool(densities) and all(
@@ -74,6 +78,15 @@ def _empty_volumes(scene):
         if obj.type == "MESH" and _volume_density_zero(material):
             yield Decision(f"'{obj.name}': a volume of density 0 scatters nothing; hidden from renders",
                            lambda o=obj: setattr(o, "hide_render", True))
+
+
+def _empty_world_volume(scene):
+    # A world volume puts every ray of the scene in a volume: Cycles marches them all.
+    world = scene.world
+    volume = _volume_output(world.node_tree if world is not None else None)
+    if volume is not None and _scatters_nothing(volume):
+        message = f"World '{world.name}': a volume of density 0 scatters nothing; unlinked from its output"
+        yield Decision(message, lambda v=volume: [v.id_data.links.remove(link) for link in list(v.links)])
 
 
 def _displaces(obj):
@@ -185,7 +198,8 @@ def _idle_volume_bounces(scene, found):
     hidden = {d.message.split("'")[1] for d in found if "volume of density 0" in d.message}
     volumes = [obj for obj in _renderable(scene) if obj.name not in hidden and obj.active_material is not None
                and _volume_output(obj.active_material.node_tree) is not None]
-    world_volume = scene.world is not None and _volume_output(scene.world.node_tree) is not None
+    world_volume = (scene.world is not None and _volume_output(scene.world.node_tree) is not None
+                    and not any(d.message.startswith("World ") for d in found))
     if not volumes and not world_volume:
         yield Decision(f"Volume bounces {scene.cycles.volume_bounces} -> 0: no volume is left",
                        lambda s=scene: setattr(s.cycles, "volume_bounces", 0))

@@ -20,7 +20,7 @@ from bpy.app.handlers import persistent
 from ..core import post
 from ..node_groups import gated_blur, god_rays
 from ..node_groups import helper as h
-from . import atmosphere, sand
+from . import atmosphere, sand, shot
 from . import ownership as own
 
 SUN_COLOR = (1.0, 0.93, 0.8, 1.0)
@@ -289,7 +289,7 @@ def refresh_sun_keys(scene):
     if white is not None:  # the exposure may have changed since the tree was built
         white.outputs[0].default_value = display_white(scene)
     sun = atmosphere.scene_sun(scene)
-    if sun is None or scene.camera is None:
+    if sun is None or shot.scene_camera(scene) is None:
         return False
     fade = tree.get("fade", 0.25)
     curve = sun_curve(scene, sun, fade)

@@ -6,6 +6,13 @@ import numpy as np
 FRAME_SAMPLES = 16  # camera positions sampled over the frame range
 
 
+def scene_camera(scene):
+    """The scene's camera object when it is a camera (an empty or a light can be the scene
+    camera), else None."""
+    camera = scene.camera
+    return camera if camera is not None and camera.type == "CAMERA" else None
+
+
 def camera_views(scene, camera):
     """The camera's world matrix and frame at up to FRAME_SAMPLES frames of the scene's range
     (one when nothing animates it), as core.clouds.frame_rays wants them."""

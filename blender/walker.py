@@ -1,6 +1,6 @@
-"""The stand-in walker: a simple figure in a red cloak on a Follow Path constraint along a gentle S-shaped curve at a
-walking pace, the path laid on the evaluated terrain every PATH_STEP, for artists without a
-rig. Any animated object works as a walker; this one is only a start.
+"""The stand-in walker: a simple figure in a red cloak on a Follow Path constraint along a gentle
+S-shaped curve at a walking pace, the path laid on the evaluated terrain every PATH_STEP, for
+artists without a rig. Any animated object works as a walker; this one is only a start.
 
 Both objects are ours (OBJECT_KEY "walker" and "walk_path") and found in the scene the
 operator runs in, so running it again updates them and another scene gets its own.

@@ -192,3 +192,13 @@ def empty_fog(size, location):
     fog.data.materials.append(single_node_material("Empty Fog", "ShaderNodeVolumeScatter", "Volume",
                                                    Density=0.0))
     return fog
+
+
+def world_volume(world, density=0.0):
+    """A Volume Scatter of `density` on the world's active output (a default world gets nodes)."""
+    tree = world.node_tree
+    output = next(n for n in tree.nodes if n.bl_idname == "ShaderNodeOutputWorld" and n.is_active_output)
+    scatter = tree.nodes.new("ShaderNodeVolumeScatter")
+    scatter.inputs["Density"].default_value = density
+    tree.links.new(scatter.outputs[0], output.inputs["Volume"])
+    return scatter

@@ -7,7 +7,7 @@ are out of range, NaN or inf are execute()'s to refuse, with an ERROR report and
 
 import math
 
-from ..blender import ownership, units
+from ..blender import ownership, shot, units
 
 
 class SandscapeOperator:
@@ -41,7 +41,7 @@ def active_mesh(context):
 
 
 def has_camera(context):
-    return context.scene.camera is not None
+    return shot.scene_camera(context.scene) is not None  # an empty can be the scene camera
 
 
 def value_problem(settings, limits, scene):

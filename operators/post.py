@@ -5,11 +5,11 @@ import bpy
 from ..blender import atmosphere, post
 from ..core import post as post_twin
 from ..ui.properties import SandscapePostSettings
-from .base import SandscapeOperator, value_problem
+from .base import SandscapeOperator, has_camera, value_problem
 
 
 def _camera_for_rays(context):
-    return not context.scene.sandscape_post.use_god_rays or context.scene.camera is not None
+    return not context.scene.sandscape_post.use_god_rays or has_camera(context)
 
 
 def _sun_for_rays(context):

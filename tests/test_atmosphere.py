@@ -185,3 +185,44 @@ def test_wind_dust_is_frame_driven_and_absent_when_off():
     assert not [n for n in tree.nodes if n.label == "Dust Field"]  # homogeneous: no field at all
     assert tree.animation_data is None or not tree.animation_data.drivers
     assert [n.phase for n in tree.nodes if n.bl_idname == "ShaderNodeVolumeScatter"] == ["HENYEY_GREENSTEIN"]
+
+
+def lone_cube_dust_box(unit_scale):
+    """A 1 m cube, a camera 8.5 m off looking at it, windless air: the dust box, in metres."""
+    scene = bpy.context.scene
+    scene.unit_settings.scale_length = unit_scale
+    per_metre = 1.0 / unit_scale
+    bpy.ops.mesh.primitive_cube_add(size=per_metre, location=(0.0, 0.0, 0.5 * per_metre))
+    camera = scenes.camera("PERSP", location=(8.5 * per_metre, -1.0 * per_metre, 1.6 * per_metre),
+                           rotation=(math.radians(85.0), 0.0, math.radians(83.0)))
+    camera.data.clip_end = 1e6
+    settings = scene.sandscape_atmosphere
+    settings.use_wind, settings.dust_density = False, 0.0
+    assert bpy.ops.sandscape.add_atmosphere() == {"FINISHED"}
+    box = next(o for o in scene.objects if o.get("sandscape_object") == "dust_volume")
+    centre, size = np.array(box.location) / per_metre, np.array(box.scale) / per_metre
+    return centre - size / 2, centre + size / 2, camera, per_metre
+
+
+@pytest.mark.parametrize("unit_scale", [1.0, 0.01])
+def test_the_dust_box_spans_the_shot_not_the_cube(unit_scale):
+    """Out to where the haze lets 1 % through, in every corner of the frame; not the cube's 1 m box
+    (once a glowing square round it). Reference: the Rayleigh law and the camera's frame, here."""
+    low, high, camera, per_metre = lone_cube_dust_box(unit_scale)
+    settings = bpy.context.scene.sandscape_atmosphere
+    extinction = air.rayleigh_coefficients(settings.density, tuple(settings.wavelengths))
+    reach = math.log(100.0) / float(np.min(extinction))  # metres, the clearest channel
+    assert 100.0 < reach < 1000.0
+    matrix = np.array(camera.matrix_world)
+    corners = np.array([tuple(c) for c in camera.data.view_frame(scene=bpy.context.scene)], np.float64)
+    directions = corners / np.linalg.norm(corners, axis=1, keepdims=True) @ matrix[:3, :3].T
+    origin = matrix[:3, 3] / per_metre
+    far = origin + directions * reach
+    margin = settings.margin / per_metre  # stored in scene units
+    inside = far[far[:, 2] > 0.0]  # the ground ends the rays below it
+    assert (inside >= low - 1e-3).all() and (inside <= high + 1e-3).all()
+    assert (origin >= low).all() and (origin <= high).all()
+    span = np.r_[far, origin[None]]
+    # Tight: no wider than the views plus the margin.
+    assert (high[:2] - low[:2] <= span[:, :2].max(0) - span[:, :2].min(0) + 2 * margin + 1e-3).all()
+    assert low[2] == pytest.approx(-margin, abs=1e-3)  # from under the ground, which ends the rays

@@ -326,3 +326,19 @@ def test_dual_lobe_phase_matches_a_thin_slab_render(lobes):
     print(f"lobes {lobes}: rendered / twin {ratios}")
     for degrees, ratio in ratios.items():
         assert ratio == pytest.approx(1.0, abs=0.03), (degrees, ratios)
+
+
+@pytest.mark.parametrize("operator, message", [("add_clouds", "Add a camera"),
+                                               ("add_post_effects", "no camera")])
+def test_an_empty_as_the_scene_camera_greys_out_what_needs_a_camera(operator, message):
+    """An empty can be the scene camera (markers bind one); it has no frame to fit a layer to."""
+    bpy.ops.mesh.primitive_plane_add(size=10)
+    empty = bpy.data.objects.new("Camera Stand-in", None)
+    bpy.context.scene.collection.objects.link(empty)
+    bpy.context.scene.camera = empty
+    bpy.ops.sandscape.add_atmosphere()
+    before = readback.data_snapshot()
+    assert not getattr(bpy.ops.sandscape, operator).poll()
+    with pytest.raises(RuntimeError, match=message):
+        getattr(bpy.ops.sandscape, operator)()
+    assert readback.data_snapshot() == before

@@ -26,7 +26,21 @@ def wasteful_demo():
     dicing.use_adaptive_subdivision = True
     scene.view_layers[0].use_pass_z = True
     scene.cycles.volume_bounces = 2
+    scenes.world_volume(scene.world, density=0.0)
     return scene, fog, slab, dicing
+
+
+def world_volume_linked(scene):
+    return any(n.bl_idname == "ShaderNodeOutputWorld" and n.inputs["Volume"].is_linked
+               for n in scene.world.node_tree.nodes)
+
+
+def test_a_world_volume_that_scatters_stays(sandscape):
+    bpy.ops.sandscape.build_demo_scene()
+    scene = bpy.context.scene
+    scenes.world_volume(scene.world, density=1e-4)
+    assert not any("World" in line for line in run(dry_run=False))
+    assert world_volume_linked(scene)
 
 
 def run(dry_run):
@@ -49,14 +63,17 @@ def test_dry_run_lists_and_changes_nothing(wasteful_demo):
     assert any("Empty Fog" in line and "density 0" in line for line in lines)
     assert any("Flat Slab" in line and "does not displace" in line for line in lines)
     assert any("pass 'Depth'" in line for line in lines)
+    assert any(line.startswith("would: World") and "density 0" in line for line in lines)
     assert all(line.startswith("would: ") for line in lines[:-1])
     assert not fog.hide_render and dicing.use_adaptive_subdivision and scene.view_layers[0].use_pass_z
+    assert world_volume_linked(scene)
 
 
 def test_switches_off_only_what_does_not_contribute(sandscape, wasteful_demo):
     scene, fog, slab, dicing = wasteful_demo
     run(dry_run=False)
     assert fog.hide_render and not dicing.use_adaptive_subdivision and not scene.view_layers[0].use_pass_z
+    assert not world_volume_linked(scene)
     # The demo's own parts contribute and stay: the displacing patch, the dust, the passes the tree reads.
     patch = next(o for o in bpy.data.objects if o.get("sandscape_object") == "footprint_patch")
     assert patch.modifiers[0].use_adaptive_subdivision
