@@ -8,10 +8,11 @@ operator runs in, so running it again updates them and another scene gets its ow
 
 import math
 
+import bmesh
 import bpy
 import numpy as np
 from bpy_extras import anim_utils
-from mathutils import Vector
+from mathutils import Matrix, Vector
 from mathutils.bvhtree import BVHTree
 
 from . import ownership as own
@@ -22,11 +23,12 @@ PATH_STEP = 0.25  # metres between path points laid on the ground
 TERRAIN_SHARE = 0.8  # the walk never leaves the middle 80 % of the terrain (slower if it must)
 HEIGHT = 1.7  # metres: a person-sized stand-in
 CLOAK = (0.35, 0.045, 0.03, 1.0)  # linear: a red cloak against the sand (the traveller of seed 004)
-# (radius at the bottom, at the top, length, x and y of the top's centre, tilt about y in degrees)
-# in metres, of tapered cylinders hanging from their top: legs mid-stride, arms swinging against them.
-LIMBS = ((0.06, 0.09, 0.88, 0.0, 0.1, -14.0), (0.06, 0.09, 0.88, 0.0, -0.1, 14.0),
-         (0.04, 0.05, 0.6, 0.0, 0.22, 10.0), (0.04, 0.05, 0.6, 0.0, -0.22, -10.0))
-TORSO = (0.16, 0.2, 0.56)  # radius at the hips, at the shoulders, length; from the hips at 0.86 m
+HIPS = 0.86  # metres above the soles
+# Tapered cylinders hanging from their top: (radius at the bottom, at the top, length, y and z of
+# the top's centre, tilt about Y in degrees), metres. Legs mid-stride, arms swinging against them.
+LIMBS = ((0.06, 0.09, 0.88, 0.1, HIPS, -14.0), (0.06, 0.09, 0.88, -0.1, HIPS, 14.0),
+         (0.04, 0.05, 0.6, 0.22, 1.38, 10.0), (0.04, 0.05, 0.6, -0.22, 1.38, -10.0))
+TORSO = (0.16, 0.2, 0.56)  # radius at the hips, at the shoulders, length
 HEAD = 0.11  # radius; its top at HEIGHT
 
 
@@ -43,8 +45,6 @@ def ensure_walker(scene, terrain, start, end):
     _shape_path(path, terrain, units.to_units(scene, (end - start) / fps * WALK_SPEED),
                 units.to_units(scene, PATH_STEP))
     walker = own.scene_object(scene, own.WALKER) or _new_walker(scene, path)
-    if walker.type == "MESH":  # the artist's own mesh in our object is theirs to dress
-        _cloak(walker)
     _stay_upright(walker)
     _animate(walker, start, end)
     return walker, path
@@ -112,22 +112,14 @@ def ground_heights(terrain, xy, top):
 def figure_mesh(scale):
     """A low-poly figure standing on its origin facing +X, HEIGHT tall: legs mid-stride, arms,
     a torso broader across than deep, a head. `scale`: scene units per metre."""
-    import bmesh
-    from mathutils import Matrix
-
     bm = bmesh.new()
-
-    def limb(bottom, top, length, x, y, z_top, tilt):
-        # A cone from bmesh is centred on its origin, its axis along Z: hang it from its top.
+    for bottom, top, length, y, z_top, tilt in LIMBS:
+        # bmesh's cone is centred on its origin, its axis along Z: hang it from its top.
         hang = Matrix.Translation((0.0, 0.0, -length / 2))
-        place = Matrix.Translation((x, y, z_top)) @ Matrix.Rotation(math.radians(tilt), 4, "Y") @ hang
+        place = Matrix.Translation((0.0, y, z_top)) @ Matrix.Rotation(math.radians(tilt), 4, "Y") @ hang
         bmesh.ops.create_cone(bm, cap_ends=True, segments=10, radius1=bottom, radius2=top, depth=length,
                               matrix=place)
-
-    hips, shoulders = 0.86, 0.86 + TORSO[2]
-    for bottom, top, length, x, y, tilt in LIMBS:
-        limb(bottom, top, length, x, y, hips if length > 0.7 else shoulders - 0.04, tilt)
-    torso = Matrix.Translation((0.0, 0.0, hips + TORSO[2] / 2)) @ Matrix.Diagonal((0.65, 1.0, 1.0, 1.0))
+    torso = Matrix.Translation((0.0, 0.0, HIPS + TORSO[2] / 2)) @ Matrix.Diagonal((0.65, 1.0, 1.0, 1.0))
     bmesh.ops.create_cone(bm, cap_ends=True, segments=12, radius1=TORSO[0], radius2=TORSO[1], depth=TORSO[2],
                           matrix=torso)
     bmesh.ops.create_uvsphere(bm, u_segments=12, v_segments=8, radius=HEAD,
@@ -141,12 +133,11 @@ def figure_mesh(scale):
 
 
 def _cloak(walker):
-    material = own.slot_material(walker, own.CLOAK)
-    if material is None:
-        material = own.mark(bpy.data.materials.new("Sandscape Walker Cloak"), own.MATERIAL_KEY, own.CLOAK)
-        walker.data.materials.append(material)
+    material = own.mark(bpy.data.materials.new("Sandscape Walker Cloak"), own.MATERIAL_KEY, own.CLOAK)
+    walker.data.materials.append(material)
     material.diffuse_color = CLOAK
-    shader = next((n for n in material.node_tree.nodes if n.bl_idname == "ShaderNodeBsdfPrincipled"), None)
+    nodes = material.node_tree.nodes if material.node_tree else ()
+    shader = next((n for n in nodes if n.bl_idname == "ShaderNodeBsdfPrincipled"), None)
     if shader is not None:
         shader.inputs["Base Color"].default_value = CLOAK
         shader.inputs["Roughness"].default_value = 0.8
@@ -156,6 +147,7 @@ def _new_walker(scene, path):
     mesh = figure_mesh(units.to_units(scene, 1.0))
     walker = own.mark(bpy.data.objects.new("Sandscape Walker", mesh), own.OBJECT_KEY, own.WALKER)
     scene.collection.objects.link(walker)
+    _cloak(walker)
     follow = walker.constraints.new("FOLLOW_PATH")
     follow.target = path
     follow.use_curve_follow = True

@@ -54,10 +54,6 @@ class SANDSCAPE_OT_add_post_effects(SandscapeOperator, bpy.types.Operator):
         keyed += ("; render denoising off (the compositor denoises, all but the glints)"
                   if done["switched_denoiser"] else "")
         self.report({"INFO"}, f"Post effects: {', '.join(effects)}{keyed}{replaced}")
-        if settings.use_blur and not settings.use_denoise and scene.cycles.use_denoising:
-            # The volume passes are not denoised: the combined image minus a noisy pass shows specks.
-            self.report({"WARNING"}, "Render denoising is on: the gated blur swaps noisy scattered light "
-                        "into a denoised image. Switch denoising off, or the blur")
         return {"FINISHED"}
 
 

@@ -58,3 +58,37 @@ def test_denoising_takes_the_noise_and_keeps_the_sparkles(sandscape):
     assert ours[1] <= 0.95 * raw[1] and ours[1] <= 1.25 * cycles[1]
     assert abs(ours[0] - raw[0]) <= 0.05  # the sparkles: as bright as raw samples leave them
     assert cycles[0] <= ours[0] - 0.1  # denoised with the rest, the sparkles lose their light
+
+
+def test_the_blur_keeps_cycles_denoising_when_ours_is_off(sandscape):
+    """Denoise off in our tree, Cycles' denoiser on (Blender's default): the gated blur swapped raw
+    volume passes into the denoised image and put their noise back. Noise: the difference of two
+    seeds, through the tree against Cycles' denoised image alone; a plane seen through dust."""
+    bpy.ops.mesh.primitive_plane_add(size=40.0)
+    scene = readback.cycles_scene(resolution=(64, 48), samples=8)
+    scenes.camera("PERSP", location=(0.0, -12.0, 2.0), rotation=(math.radians(80), 0.0, 0.0))
+    air = scene.sandscape_atmosphere
+    air.density, air.dust_density, air.use_wind = 0.05, 0.05, False
+    assert bpy.ops.sandscape.add_atmosphere() == {"FINISHED"}
+    settings = scene.sandscape_post
+    settings.use_denoise, settings.use_god_rays, settings.use_blur = False, False, True
+    scene.cycles.use_denoising = True
+    assert bpy.ops.sandscape.add_post_effects() == {"FINISHED"}
+    tree = scene.compositing_node_group
+
+    def noise(compositing):
+        frames = []
+        for seed in (0, 1):
+            scene.cycles.seed = seed
+            frames.append(render(scene, 8, compositing, cycles_denoiser=True))
+        return float(np.std(frames[0] - frames[1]))
+
+    through_tree, denoised_alone = noise(True), noise(False)
+    print(f"seed-to-seed noise: through the tree {through_tree:.4f}, alone {denoised_alone:.4f}")
+    assert through_tree <= 1.25 * denoised_alone
+    assert sandscape.blender.ownership.node(tree, sandscape.blender.post.DENOISE_VOLUME) is not None
+    # Switched back to raw renders: the tree is rebuilt at render time without the extra denoiser.
+    scene.cycles.use_denoising = False
+    assert sandscape.blender.post.stale_for_denoiser(scene)
+    readback.render(scene)
+    assert sandscape.blender.ownership.node(tree, sandscape.blender.post.DENOISE_VOLUME) is None

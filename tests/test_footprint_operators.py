@@ -186,6 +186,11 @@ def test_add_walker_makes_a_walk_that_paints(walk):
     assert bpy.ops.sandscape.add_walker() == {"FINISHED"}  # updates, no second walker
     walkers = [o for o in bpy.data.objects if o.get("sandscape_object") == "walker"]
     assert len(walkers) == 1 and walk.walker == walkers[0]
+    # A 1.7 m figure standing on its origin, one red cloak, not a second on the re-run.
+    heights = [v.co.z for v in walkers[0].data.vertices]
+    assert max(heights) == pytest.approx(1.7, abs=1e-5) and -0.01 <= min(heights) <= 0.0
+    cloaks = [m for m in bpy.data.materials if m.get("sandscape_material") == "cloak"]
+    assert len(cloaks) == 1 and walkers[0].active_material == cloaks[0]
     assert bpy.ops.sandscape.paint_footprints() == {"FINISHED"}
     assert len(ours("points")[0].data.vertices) >= 2  # 1.25 s at a walking pace, 0.7 m strides
 
@@ -201,7 +206,7 @@ def test_the_stand_in_walks_at_a_walking_pace_on_the_ground(walk):
     for frame in range(1, 98, 4):
         scene.frame_set(frame)
         positions.append(np.array(walker.matrix_world.translation))
-        tilts.append(walker.matrix_world.col[2][2])  # the box's up axis against world Z
+        tilts.append(walker.matrix_world.col[2][2])  # the figure's up axis against world Z
     positions = np.array(positions)
     speed = np.linalg.norm(np.diff(positions, axis=0), axis=1) * 24 / 4
     print(f"stand-in speed {speed.min():.2f}-{speed.max():.2f} m/s")

@@ -112,7 +112,7 @@ class SANDSCAPE_PT_atmosphere(SandscapeSubPanel, bpy.types.Panel):
         layout = self.layout
         _sections(layout, context.scene.sandscape_atmosphere, ATMOSPHERE_SECTIONS)
         # Where the user sees it: why the dust is a box and not a world volume.
-        layout.label(text="Dust fills a box around the scene:", icon="INFO")
+        layout.label(text="Dust fills a box around what the camera sees:", icon="INFO")
         layout.label(text="a world volume would block the sun lamp")
         layout.operator("sandscape.add_atmosphere", icon="LIGHT_SUN")
         _sections(layout, context.scene.sandscape_post, POST_SECTIONS)

@@ -123,8 +123,8 @@ class SandscapeAtmosphereSettings(bpy.types.PropertyGroup):
                                "sun and sky reads as its own grey")
     density: FloatProperty(name="Density", default=0.02, soft_min=0.0, soft_max=1.0, precision=4,
                            description="Scattering coefficient at 550 nm, per metre; 0 adds no volume at "
-                           "all. The volume is a box around the scene: a world volume would block the sun "
-                           "lamp")
+                           "all. The volume is a box around what the camera sees: a world volume would "
+                           "block the sun lamp")
     wavelengths: FloatVectorProperty(name="Wavelengths", size=3, default=(680.0, 550.0, 440.0),
                                      soft_min=380.0, soft_max=780.0,
                                      description="Red, green, blue wavelengths in nm for the 1/lambda^4 law")
