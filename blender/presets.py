@@ -13,14 +13,18 @@ BLENDER_DEFAULTS = {
     "volume_bounces": 0, "sampling_pattern": "AUTOMATIC",
 }
 
-# Chosen from the curves of bench/quality.py (demo frame 150, 240x135, 2 cores; RMSE clipped at
-# the display's white). Blender's defaults took 65.8 s for RMSE 0.039; the same settings at fewer
-# samples are the curve a preset is held against. Raw samples with ray-marched volumes lie lowest:
-#   draft:   32 spp (2.8 s, 0.134; the defaults need 7.1 s for that error)
-#   preview: 64 spp (5.0 s, 0.093; the defaults need 10.0 s)
-#   final:   384 spp (27.3 s, 0.039: the shipped defaults' own error, 2.4x faster)
-# The other knobs keep Blender's values: moved alone around preview, adaptive thresholds and the
-# volume step rate stayed on the samples curve, and dicing 0.5-4 and 2-8 bounces changed < 2 %.
+# Chosen from the curves of bench/quality.py (bench/RESULTS.md, "Quality", 2026-11-23: the demo's
+# frame 150 at 160x90 through its compositor, 2 cores; RMSE clipped at the display's white against
+# a 1024-sample unbiased reference, its own noise taken out). Ray-marched volumes with the tree's
+# denoising of all but the glints lie lowest until their step bias (about 0.045 at step rate 1)
+# takes over; unbiased volumes cost about 33 s a render whatever the samples (Cycles builds
+# their majorant grid), which sets the floor of Blender's defaults on this scene:
+#   draft:   16 spp  (1.7 s, 0.078)
+#   preview: 64 spp  (4.8 s, 0.059)
+#   final:   256 spp at step rate 0.25 (28.0 s, 0.033; at step rate 1 it stopped at 0.050)
+# Blender's defaults reach 0.043 at 16 spp in 33.5 s and 0.0094 at 4096 in 349 s. Unbiased
+# volumes with our denoising matched Cycles' own at 64 and 256 spp (0.031 and 0.018): on RMSE
+# the route buys nothing, what it buys is glints OIDN does not smear (tests/test_denoise_but_glints.py).
 # Volume bounces are for clouds (bench/clouds.py, "Clouds"): their light grows with bounces up to
 # about 128, 0.5 % short of 512 (2.3x the time of 4 bounces); 64 is 3.3 % short, 16 is 16 %.
 # Thin dust ends its paths long before, so without clouds the bounces cost next to nothing. The
@@ -30,13 +34,13 @@ _RAW_RAY_MARCHED = {"use_adaptive_sampling": False, "adaptive_threshold": 0.0, "
                     "sampling_pattern": "AUTOMATIC"}
 
 
-def _preset(samples, volume_bounces, denoise=True):
-    return {"samples": samples, **_RAW_RAY_MARCHED, "volume_bounces": volume_bounces,
-            "max_bounces": max(12, volume_bounces), DENOISE: denoise}
+def _preset(samples, volume_bounces, step_rate=1.0, denoise=True):
+    return {"samples": samples, **_RAW_RAY_MARCHED, "volume_step_rate": step_rate,
+            "volume_bounces": volume_bounces, "max_bounces": max(12, volume_bounces), DENOISE: denoise}
 
 
 DENOISE = "denoise_but_glints"  # not a Cycles setting: the post-effects tree's denoising
-PRESETS = {"DRAFT": _preset(16, 16), "PREVIEW": _preset(64, 64), "FINAL": _preset(256, 128)}
+PRESETS = {"DRAFT": _preset(16, 16), "PREVIEW": _preset(64, 64), "FINAL": _preset(256, 128, step_rate=0.25)}
 
 
 def apply(scene, settings):
