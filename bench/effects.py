@@ -63,23 +63,6 @@ def lit_lower_half(pixels):
     return float(np.median(hue)), float(np.median(saturation))
 
 
-def render_display(bpy, scene, path):
-    """Render to a 16-bit PNG (the view transform applied) and read it back: (H, W, 3), rows bottom-up."""
-    settings = scene.render.image_settings
-    settings.file_format, settings.color_depth, settings.color_mode = "PNG", "16", "RGB"
-    scene.render.filepath = str(path)
-    bpy.ops.render.render(write_still=True, scene=scene.name)
-    image = bpy.data.images.load(str(path), check_existing=False)
-    image.colorspace_settings.name = "Non-Color"  # the display values as written
-    try:
-        width, height = image.size
-        pixels = np.empty(width * height * 4, np.float32)
-        image.pixels.foreach_get(pixels)
-    finally:
-        bpy.data.images.remove(image)
-    return pixels.reshape(height, width, 4)[..., :3]
-
-
 def removals(bpy, scene, modules):
     """Effect name -> a function that removes it from the demo scene (each undone by a rebuild)."""
     footprints, post, clouds, sand = (modules[name] for name in ("footprints", "post", "clouds", "sand"))
@@ -122,16 +105,11 @@ def build_demo(bpy, samples, frame):
 
 
 def contact_sheet(images, path):
-    try:
-        import matplotlib
-
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-    except ImportError:
-        print("effects: matplotlib missing (pip install -r requirements-bench.txt); no contact sheet")
+    plt = results.pyplot("effects: no contact sheet")
+    if plt is None:
         return
     rows = len(images)
-    figure, axes = plt.subplots(rows, 2, figsize=(6.4, 1.9 * rows), dpi=110)
+    figure, axes = plt.subplots(rows, 2, figsize=(6.4, 1.9 * rows), dpi=110, squeeze=False)
     for row, (label, on, off) in enumerate(images):
         for column, (pixels, state) in enumerate(((on, "on"), (off, "off"))):
             axis = axes[row, column]
@@ -159,12 +137,14 @@ def main(argv=None):
     import bpy
 
     session.install_dev_extension(root)
+    from devtools import readback
+
     modules = {name: importlib.import_module(f"{session.MODULE}.blender.{name}")
                for name in ("footprints", "post", "clouds", "sand", "atmosphere")}
     out = pathlib.Path(tempfile.mkdtemp(prefix="sandscape-effects-"))
     scene = build_demo(bpy, args.samples, args.frame)
     started = time.perf_counter()
-    full = render_display(bpy, scene, out / "full.png")
+    full = readback.render_display(scene, out / "full.png")
     seconds = time.perf_counter() - started
     samples = scene.cycles.samples
     hue, saturation = lit_lower_half(full)
@@ -173,7 +153,7 @@ def main(argv=None):
         scene = build_demo(bpy, args.samples, args.frame)
         removals(bpy, scene, modules)[name]()
         scene.frame_set(args.frame)
-        without = render_display(bpy, scene, out / f"no-{name.replace(' ', '-')}.png")
+        without = readback.render_display(scene, out / f"no-{name.replace(' ', '-')}.png")
         rows.append((name, block_change(full, without)))
         sheet.append((name, full, without))
         print(rows[-1], flush=True)

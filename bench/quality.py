@@ -164,25 +164,15 @@ def main(argv=None):
 def noise_sigma(readback, scene, settings, presets):
     """(seconds of one render, sigma): the noise of display values, from two seeds' renders of the
     16-bit display PNG (sigma = std(a - b) / sqrt 2)."""
-    import bpy
-
     frames = []
     for seed in (0, 1):
         presets.apply(scene, {presets.DENOISE: False, **settings})
         scene.cycles.seed = seed
-        image_settings = scene.render.image_settings
-        image_settings.file_format, image_settings.color_depth, image_settings.color_mode = "PNG", "16", "RGB"
         with tempfile.TemporaryDirectory(prefix="sandscape-noise-") as tmp:
-            scene.render.filepath = str(pathlib.Path(tmp) / "frame.png")
             started = time.perf_counter()
-            bpy.ops.render.render(write_still=True, scene=scene.name)
+            pixels = readback.render_display(scene, pathlib.Path(tmp) / "frame.png")
             seconds = time.perf_counter() - started
-            image = bpy.data.images.load(scene.render.filepath, check_existing=False)
-            image.colorspace_settings.name = "Non-Color"  # the display values as written
-            pixels = np.empty(image.size[0] * image.size[1] * 4, np.float32)
-            image.pixels.foreach_get(pixels)
-            bpy.data.images.remove(image)
-        frames.append(pixels.reshape(-1, 4)[:, :3].astype(np.float64))
+        frames.append(pixels.astype(np.float64))
     return seconds, float(np.std(frames[0] - frames[1]) / np.sqrt(2.0))
 
 
@@ -196,13 +186,8 @@ def time_for_error(curve, error):
 
 
 def plot(rows, path):
-    try:
-        import matplotlib
-
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-    except ImportError:
-        print("quality: matplotlib missing (pip install -r requirements-bench.txt); no plot")
+    plt = results.pyplot("quality: no plot")
+    if plt is None:
         return
     figure, axes = plt.subplots(figsize=(7, 4.5), dpi=120)
     for route in ("raw, unbiased", "raw, ray march", "OIDN, ray march", "all but glints denoised, ray march"):

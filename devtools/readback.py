@@ -88,16 +88,29 @@ def render(scene=None):
     settings.file_format = "OPEN_EXR"
     settings.color_depth = "32"
     with tempfile.TemporaryDirectory(prefix="sandscape-render-") as tmp:
-        path = pathlib.Path(tmp) / "frame.exr"
-        scene.render.filepath = str(path)
-        bpy.ops.render.render(write_still=True, scene=scene.name)
-        image = bpy.data.images.load(str(path), check_existing=False)
-        try:
-            width, height = image.size
-            pixels = np.empty(width * height * 4, np.float32)
-            image.pixels.foreach_get(pixels)
-        finally:
-            bpy.data.images.remove(image)
+        return _render_and_read(scene, pathlib.Path(tmp) / "frame.exr")
+
+
+def render_display(scene, path):
+    """Render to a 16-bit PNG at `path` (the view transform applied) and read back the display
+    values as written: (H, W, 3), rows bottom-up."""
+    settings = scene.render.image_settings
+    settings.file_format, settings.color_depth, settings.color_mode = "PNG", "16", "RGB"
+    return _render_and_read(scene, pathlib.Path(path), "Non-Color")[..., :3]
+
+
+def _render_and_read(scene, path, colorspace=None):
+    scene.render.filepath = str(path)
+    bpy.ops.render.render(write_still=True, scene=scene.name)
+    image = bpy.data.images.load(str(path), check_existing=False)
+    if colorspace:
+        image.colorspace_settings.name = colorspace
+    try:
+        width, height = image.size
+        pixels = np.empty(width * height * 4, np.float32)
+        image.pixels.foreach_get(pixels)
+    finally:
+        bpy.data.images.remove(image)
     return pixels.reshape(height, width, 4)
 
 

@@ -58,3 +58,16 @@ def clipped_rmse(pixels, reference, white):
     """RMSE of linear pixels with both images clipped at `white`."""
     difference = np.minimum(np.asarray(pixels, np.float64), white) - np.minimum(reference, white)
     return float(np.sqrt(np.mean(difference ** 2)))
+
+
+def pyplot(without):
+    """matplotlib.pyplot on the Agg backend, or None (saying `without`) when it is not installed."""
+    try:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        print(f"{without}: matplotlib is missing (pip install -r requirements-bench.txt)")
+        return None
+    return plt
