@@ -8,7 +8,7 @@ volume step rate); Blender's defaults; and each Sandscape preset. Writes the cur
 bench/quality.png (matplotlib, from requirements-bench.txt) and appends the table to
 bench/RESULTS.md.
 
-Run: .venv/bin/python bench/quality.py [--quick] [--axes] [--no-append]
+Run: .venv/bin/python bench/quality.py [--quick] [--axes] [--noise] [--no-append]
 """
 
 import argparse
@@ -59,6 +59,8 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="a smaller grid and a lower reference")
     parser.add_argument("--axes", action="store_true", help="also sweep the preview preset's other knobs")
+    parser.add_argument("--noise", action="store_true",
+                        help="only the noise rows (two seeds of the demo still), about 2 minutes")
     parser.add_argument("--no-append", action="store_true")
     args = parser.parse_args(argv)
     root = session.isolate()
@@ -73,8 +75,13 @@ def main(argv=None):
     session.reset()
     bpy.ops.sandscape.build_demo_scene()
     scene = bpy.context.scene
-    scene.render.resolution_x, scene.render.resolution_y = RESOLUTION
     scene.render.resolution_percentage = 100
+    noise = noise_rows(readback, scene, presets)
+    if args.noise:
+        results.publish([results.heading("Quality, noise rows", ["--noise"]), *noise_table(noise)],
+                        append=not args.no_append)
+        return
+    scene.render.resolution_x, scene.render.resolution_y = RESOLUTION
     scene.frame_set(FRAME)
     reference_spp = 256 if args.quick else 1024
     base = dict(presets.BLENDER_DEFAULTS, **LIGHT_PATHS, samples=reference_spp // 2,
@@ -125,15 +132,6 @@ def main(argv=None):
         rows.append((f"preset {name.lower()}", ", ".join(f"{k}={v}" for k, v in settings.items()), seconds,
                      rmse(pixels)))
         print(rows[-1], flush=True)
-    # The noise a viewer sees: two seeds of the demo's still frame at the size the README shows.
-    scene.render.resolution_x, scene.render.resolution_y = NOISE_RESOLUTION
-    scene.frame_set(NOISE_FRAME)
-    plain = dict(presets.PRESETS["PREVIEW"], samples=16, **{presets.DENOISE: False})
-    noise = [("plain 16 spp, raw", *noise_sigma(readback, scene, plain, presets))]
-    for name in ("DRAFT", "PREVIEW"):  # Final's two renders would double the bench's time
-        settings = presets.PRESETS[name]
-        noise.append((f"preset {name.lower()}", *noise_sigma(readback, scene, settings, presets)))
-        print(noise[-1], flush=True)
     defaults = next(r for r in rows if r[0] == "Blender defaults")
     curve = sorted((s, e) for kind, _, s, e in rows if kind in ("defaults curve", "Blender defaults"))
     flags = (["--quick"] if args.quick else []) + (["--axes"] if args.axes else [])
@@ -152,13 +150,32 @@ def main(argv=None):
             versus += (f"; the defaults need {equal:.1f} s for this RMSE: {equal / seconds:.1f}x faster"
                        if equal else "; outside the measured defaults curve")
         lines.append(f"| {kind} | {label} | {seconds:.2f} | {error:.5f} | {versus} |")
-    lines += [f"\nNoise: demo frame {NOISE_FRAME} at {NOISE_RESOLUTION[0]}x{NOISE_RESOLUTION[1]}, sigma of "
-              "display values from two seeds (std of the difference / sqrt 2, 16-bit PNG).\n",
-              "| render | s | sigma | time vs plain 16 spp |", "|---|---|---|---|"]
-    lines += [f"| {label} | {seconds:.1f} | {sigma:.4f} | {seconds / noise[0][1]:.1f}x |"
-              for label, seconds, sigma in noise]
+    lines += ["", *noise_table(noise)]
     results.publish(lines, append=not args.no_append)
     plot(rows, REPO / "bench" / "quality.png")
+
+
+
+def noise_rows(readback, scene, presets):
+    """The noise a viewer sees: two seeds of the demo's still frame at the size the README shows."""
+    scene.render.resolution_x, scene.render.resolution_y = NOISE_RESOLUTION
+    scene.frame_set(NOISE_FRAME)
+    plain = dict(presets.PRESETS["PREVIEW"], samples=16, **{presets.DENOISE: False})
+    noise = [("plain 16 spp, raw", *noise_sigma(readback, scene, plain, presets))]
+    for name in ("DRAFT", "PREVIEW"):  # Final's two renders would double the bench's time
+        settings = presets.PRESETS[name]
+        noise.append((f"preset {name.lower()}", *noise_sigma(readback, scene, settings, presets)))
+        print(noise[-1], flush=True)
+    return noise
+
+
+def noise_table(noise):
+    return [f"{results.machine()}. Noise: demo frame {NOISE_FRAME} at {NOISE_RESOLUTION[0]}x"
+            f"{NOISE_RESOLUTION[1]}, sigma of display values from two seeds (std of the difference / "
+            "sqrt 2, 16-bit PNG).\n",
+            "| render | s | sigma | time vs plain 16 spp |", "|---|---|---|---|",
+            *(f"| {label} | {seconds:.1f} | {sigma:.4f} | {seconds / noise[0][1]:.1f}x |"
+              for label, seconds, sigma in noise)]
 
 
 def noise_sigma(readback, scene, settings, presets):

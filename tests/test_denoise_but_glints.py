@@ -54,9 +54,11 @@ def test_denoising_takes_the_noise_and_keeps_the_sparkles(sandscape):
     assert sparkles.sum() >= 20 and sand.mean() > 0.3
     # The plain sand: about as clean as Cycles' denoiser leaves it. Most of its error is the
     # grains' sub-pixel texture, which no denoiser can tell from the image. Measured raw / ours /
-    # Cycles': 0.599 / 0.542 / 0.520 on 5.2, 0.571 / 0.478 / 0.413 on 5.0.
+    # Cycles': 0.599 / 0.521 / 0.520 on 5.2, 0.571 / 0.413 / 0.413 on 5.0.
     assert ours[1] <= 0.95 * raw[1] and ours[1] <= 1.25 * cycles[1]
-    assert abs(ours[0] - raw[0]) <= 0.05  # the sparkles: as bright as raw samples leave them
+    # The sparkles: as bright as in the reference. Raw samples are themselves off by their noise
+    # (1.020 on 5.2, 1.076 on 5.0); ours 0.975 and 0.970, Cycles' 0.848 and 0.746.
+    assert abs(ours[0] - 1.0) <= 0.05
     assert cycles[0] <= ours[0] - 0.1  # denoised with the rest, the sparkles lose their light
 
 
