@@ -155,7 +155,6 @@ def main(argv=None):
     plot(rows, REPO / "bench" / "quality.png")
 
 
-
 def noise_rows(readback, scene, presets):
     """The noise a viewer sees: two seeds of the demo's still frame at the size the README shows."""
     scene.render.resolution_x, scene.render.resolution_y = NOISE_RESOLUTION
@@ -170,6 +169,7 @@ def noise_rows(readback, scene, presets):
 
 
 def noise_table(noise):
+    """The noise rows as RESULTS.md lines: a caption and a table."""
     return [f"{results.machine()}. Noise: demo frame {NOISE_FRAME} at {NOISE_RESOLUTION[0]}x"
             f"{NOISE_RESOLUTION[1]}, sigma of display values from two seeds (std of the difference / "
             "sqrt 2, 16-bit PNG).\n",

@@ -136,7 +136,7 @@ def _sparkle_weight(tree, layers, glint, clean):
     Preview, 320x180 (σ seed to seed; glint RMSE; sparkle light kept against 1024 samples):
     1 to 2: 0.0072, 0.054, 1.09; 1.5 to 3: 0.0059, 0.046, 1.03; 2 to 4: 0.0053, 0.040, 0.98;
     all denoised: 0.0049, 0.024, 0.92; all raw: 0.061, 0.091, 0.95. Above 1.5 the sparkles of
-    tests/test_denoise_but_glints.py keep their light (0.975 of raw; 0.932 from 2).
+    tests/test_denoise_but_glints.py keep their light (0.975 of the reference's; 0.932 from 2).
     """
     grains = h.math(tree, "GREATER_THAN", layers.outputs[GLINT_AOV], 0.0, label="Glinting Grains Hit")
     glint_level = _luminance(tree, glint)
@@ -146,7 +146,7 @@ def _sparkle_weight(tree, layers, glint, clean):
     h.link(tree, _luminance(tree, clean), around.inputs["Mask"])
     ground = h.math(tree, "MAXIMUM", around.outputs["Mask"], 1e-6, label="Ground > 0")
     ratio = h.math(tree, "DIVIDE", glint_level, ground.outputs[0], label="Glint / Ground")
-    outshines = h.add_node(tree, "ShaderNodeMapRange", label="Outshines the Pixel",
+    outshines = h.add_node(tree, "ShaderNodeMapRange", label="Outshines the Ground",
                            inputs={"From Min": 1.5, "From Max": 3.0, "To Min": 0.0, "To Max": 1.0})
     h.link(tree, ratio.outputs[0], outshines.inputs["Value"])
     weight = h.math(tree, "MULTIPLY", grains.outputs[0], outshines.outputs["Result"], label="Sparkle Weight")
