@@ -12,6 +12,7 @@ Run: .venv/bin/python bench/quality.py [--quick] [--axes] [--noise] [--no-append
 """
 
 import argparse
+import itertools
 import pathlib
 import sys
 import tempfile
@@ -33,6 +34,9 @@ AXES = (("adaptive_threshold", (0.01, 0.05, 0.1)), ("dicing_rate", (0.5, 2.0, 4.
 # bounces up to about 128, bench/clouds.py). Blender's sampling recipe is held to the same paths.
 LIGHT_PATHS = {"volume_bounces": 128, "max_bounces": 128}
 NOISE_RESOLUTION, NOISE_FRAME = (320, 180), 160
+# The issue's sigma is seeds 0 and 1. A few one-pixel sparkles hold much of it, so one pair can be
+# lucky by 5-10 %: the mean over the pairs of four seeds is the steadier figure.
+NOISE_SEEDS = (0, 1, 2, 3)
 
 
 def render(readback, scene, settings, presets, seed=0):
@@ -60,7 +64,7 @@ def main(argv=None):
     parser.add_argument("--quick", action="store_true", help="a smaller grid and a lower reference")
     parser.add_argument("--axes", action="store_true", help="also sweep the preview preset's other knobs")
     parser.add_argument("--noise", action="store_true",
-                        help="only the noise rows (two seeds of the demo still), about 2 minutes")
+                        help="only the noise rows (four seeds of the demo still), about 5 minutes")
     parser.add_argument("--no-append", action="store_true")
     args = parser.parse_args(argv)
     root = session.isolate()
@@ -156,7 +160,7 @@ def main(argv=None):
 
 
 def noise_rows(readback, scene, presets):
-    """The noise a viewer sees: two seeds of the demo's still frame at the size the README shows."""
+    """The noise a viewer sees: seeds of the demo's still frame at the size the README shows."""
     scene.render.resolution_x, scene.render.resolution_y = NOISE_RESOLUTION
     scene.frame_set(NOISE_FRAME)
     plain = dict(presets.PRESETS["PREVIEW"], samples=16, **{presets.DENOISE: False})
@@ -172,25 +176,28 @@ def noise_table(noise):
     """The noise rows as RESULTS.md lines: a caption and a table."""
     return [f"{results.machine()}. Noise: demo frame {NOISE_FRAME} at {NOISE_RESOLUTION[0]}x"
             f"{NOISE_RESOLUTION[1]}, sigma of display values from two seeds (std of the difference / "
-            "sqrt 2, 16-bit PNG).\n",
-            "| render | s | sigma | time vs plain 16 spp |", "|---|---|---|---|",
-            *(f"| {label} | {seconds:.1f} | {sigma:.4f} | {seconds / noise[0][1]:.1f}x |"
-              for label, seconds, sigma in noise)]
+            f"sqrt 2, 16-bit PNG): seeds 0 and 1, and the mean over the pairs of seeds {NOISE_SEEDS}; "
+            "s is the mean render time.\n",
+            "| render | s | sigma, seeds 0 and 1 | sigma, mean of pairs | time vs plain 16 spp |",
+            "|---|---|---|---|---|",
+            *(f"| {label} | {seconds:.1f} | {sigma:.4f} | {mean:.4f} | {seconds / noise[0][1]:.1f}x |"
+              for label, seconds, sigma, mean in noise)]
 
 
 def noise_sigma(readback, scene, settings, presets):
-    """(seconds of one render, sigma): the noise of display values, from two seeds' renders of the
-    16-bit display PNG (sigma = std(a - b) / sqrt 2)."""
-    frames = []
-    for seed in (0, 1):
+    """(mean seconds of a render, sigma of seeds 0 and 1, mean sigma over all pairs of NOISE_SEEDS):
+    the noise of display values from renders of the 16-bit display PNG (sigma = std(a - b) / sqrt 2)."""
+    frames, seconds = [], []
+    for seed in NOISE_SEEDS:
         presets.apply(scene, {presets.DENOISE: False, **settings})
         scene.cycles.seed = seed
         with tempfile.TemporaryDirectory(prefix="sandscape-noise-") as tmp:
             started = time.perf_counter()
             pixels = readback.render_display(scene, pathlib.Path(tmp) / "frame.png")
-            seconds = time.perf_counter() - started
+            seconds.append(time.perf_counter() - started)
         frames.append(pixels.astype(np.float64))
-    return seconds, float(np.std(frames[0] - frames[1]) / np.sqrt(2.0))
+    sigmas = [float(np.std(a - b) / np.sqrt(2.0)) for a, b in itertools.combinations(frames, 2)]
+    return float(np.mean(seconds)), sigmas[0], float(np.mean(sigmas))
 
 
 def time_for_error(curve, error):

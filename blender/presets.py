@@ -40,7 +40,7 @@ def _preset(samples, volume_bounces, step_rate=1.0, denoise=True):
 
 
 DENOISE = "denoise_but_glints"  # not a Cycles setting: the post-effects tree's denoising
-PRESETS = {"DRAFT": _preset(16, 16), "PREVIEW": _preset(64, 64), "FINAL": _preset(256, 128, step_rate=0.25)}
+PRESETS = {"DRAFT": _preset(16, 16), "PREVIEW": _preset(72, 64), "FINAL": _preset(256, 128, step_rate=0.25)}
 
 
 def apply(scene, settings):

@@ -48,7 +48,7 @@ class SANDSCAPE_OT_apply_quality_preset(SandscapeOperator, bpy.types.Operator):
     preset: EnumProperty(
         name="Preset", default="PREVIEW",
         items=(("DRAFT", "Draft", "16 samples, denoised but for the glints: composition and light"),
-               ("PREVIEW", "Preview", "64 samples, denoised but for the glints: clean enough to judge "
+               ("PREVIEW", "Preview", "72 samples, denoised but for the glints: clean enough to judge "
                 "glints and prints (the demo still)"),
                ("FINAL", "Final", "256 samples, denoised but for the glints: below the error of Blender's "
                 "defaults in less time")))
