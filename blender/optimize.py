@@ -15,11 +15,18 @@ VOLUME_SHADERS = {"ShaderNodeVolumeScatter", "ShaderNodeVolumeAbsorption", "Shad
                   "ShaderNodeVolumeCoefficients"}
 
 
-class Decision:
-    __slots__ = ("message", "apply")
+EMPTY_VOLUME, EMPTY_WORLD_VOLUME, IDLE_DICING, DARK_GLINTS, IDLE_RAYS, IDLE_BOUNCES, UNUSED_PASS = (
+    "empty volume", "empty world volume", "idle dicing", "dark glints", "idle god rays", "idle bounces",
+    "unused pass")
 
-    def __init__(self, message, apply):
-        self.message, self.apply = message, apply
+
+class Decision:
+    """A finding: the line for the report, its kind and what it is about (for the checks that
+    depend on earlier findings; never read back from the text), and a function that applies it."""
+    __slots__ = ("message", "apply", "kind", "target")
+
+    def __init__(self, message, apply, kind, target=None):
+        self.message, self.apply, self.kind, self.target = message, apply, kind, target
 
 
 def decisions(scene):
@@ -77,7 +84,7 @@ def _empty_volumes(scene):
         material = obj.active_material
         if obj.type == "MESH" and _volume_density_zero(material):
             yield Decision(f"'{obj.name}': a volume of density 0 scatters nothing; hidden from renders",
-                           lambda o=obj: setattr(o, "hide_render", True))
+                           lambda o=obj: setattr(o, "hide_render", True), EMPTY_VOLUME, obj)
 
 
 def _empty_world_volume(scene):
@@ -86,7 +93,8 @@ def _empty_world_volume(scene):
     volume = _volume_output(world.node_tree if world is not None else None)
     if volume is not None and _scatters_nothing(volume):
         message = f"World '{world.name}': a volume of density 0 scatters nothing; unlinked from its output"
-        yield Decision(message, lambda v=volume: [v.id_data.links.remove(link) for link in list(v.links)])
+        yield Decision(message, lambda v=volume: [v.id_data.links.remove(link) for link in list(v.links)],
+                       EMPTY_WORLD_VOLUME, world)
 
 
 def _displaces(obj):
@@ -139,7 +147,7 @@ def _idle_adaptive_subdivision(scene):
             else:
                 continue
             yield Decision(f"'{obj.name}': adaptive subdivision off, {reason}",
-                           lambda m=modifier: setattr(m, "use_adaptive_subdivision", False))
+                           lambda m=modifier: setattr(m, "use_adaptive_subdivision", False), IDLE_DICING, obj)
 
 
 def _dark_glints(scene):
@@ -156,7 +164,7 @@ def _dark_glints(scene):
         if add is None or not add.outputs[0].is_linked:
             continue
         yield Decision(f"'{material.name}': glint strength 0; the glint branch is bypassed",
-                       lambda t=tree, a=add: _bypass(t, a))
+                       lambda t=tree, a=add: _bypass(t, a), DARK_GLINTS, material)
 
 
 def _bypass(tree, add):
@@ -177,7 +185,8 @@ def _idle_god_rays(scene):
     elif _always_zero(tree, rays):
         reason = "the sun is out of view on every frame"
     if reason:
-        yield Decision(f"God rays removed from the compositor: {reason}", lambda s=scene: _drop_rays(s))
+        yield Decision(f"God rays removed from the compositor: {reason}", lambda s=scene: _drop_rays(s),
+                       IDLE_RAYS, scene)
 
 
 def _always_zero(tree, rays):
@@ -195,14 +204,15 @@ def _drop_rays(scene):
 def _idle_volume_bounces(scene, found):
     if scene.cycles.volume_bounces == 0:
         return
-    hidden = {d.message.split("'")[1] for d in found if "volume of density 0" in d.message}
-    volumes = [obj for obj in _renderable(scene) if obj.name not in hidden and obj.active_material is not None
+    hidden = {d.target.as_pointer() for d in found if d.kind == EMPTY_VOLUME}
+    volumes = [obj for obj in _renderable(scene) if obj.as_pointer() not in hidden
+               and obj.active_material is not None
                and _volume_output(obj.active_material.node_tree) is not None]
     world_volume = (scene.world is not None and _volume_output(scene.world.node_tree) is not None
-                    and not any(d.message.startswith("World ") for d in found))
+                    and not any(d.kind == EMPTY_WORLD_VOLUME for d in found))
     if not volumes and not world_volume:
         yield Decision(f"Volume bounces {scene.cycles.volume_bounces} -> 0: no volume is left",
-                       lambda s=scene: setattr(s.cycles, "volume_bounces", 0))
+                       lambda s=scene: setattr(s.cycles, "volume_bounces", 0), IDLE_BOUNCES, scene)
 
 
 PASSES = {  # Render Layers output -> (owner path, property)
@@ -221,7 +231,7 @@ PASSES = {  # Render Layers output -> (owner path, property)
 
 
 def _unused_passes(scene, found):
-    if any(d.message.startswith("God rays removed") for d in found):
+    if any(d.kind == IDLE_RAYS for d in found):
         return  # the rebuilt tree decides its own passes
     tree = scene.compositing_node_group
     used = set()
@@ -236,5 +246,6 @@ def _unused_passes(scene, found):
             holder = getattr(layer, owner) if owner else layer
             if getattr(holder, prop, False) and name not in used:
                 yield Decision(f"View layer '{layer.name}': pass '{name}' is rendered but nothing "
-                               "reads it; off", lambda h=holder, p=prop: setattr(h, p, False))
+                               "reads it; off", lambda h=holder, p=prop: setattr(h, p, False),
+                               UNUSED_PASS, layer)
 

@@ -19,10 +19,12 @@ BLENDER_DEFAULTS = {
 # denoising of all but the glints lie lowest until their step bias (about 0.045 at step rate 1)
 # takes over; unbiased volumes cost about 33 s a render whatever the samples (Cycles builds
 # their majorant grid), which sets the floor of Blender's defaults on this scene:
-#   draft:   16 spp  (1.7 s, 0.078)
-#   preview: 64 spp  (4.8 s, 0.059)
-#   final:   256 spp at step rate 0.25 (28.0 s, 0.033; at step rate 1 it stopped at 0.050)
-# Blender's defaults reach 0.043 at 16 spp in 33.5 s and 0.0094 at 4096 in 349 s. Unbiased
+#   draft:   16 spp  (1.8 s, 0.064)
+#   preview: 72 spp  (5.2 s, 0.049; 72 rather than 64 for the noise a viewer sees: σ 0.0047 at
+#            320x180, "Quality, noise rows")
+#   final:   256 spp at step rate 0.25 (27.0 s, 0.033; at step rate 1 it stopped at 0.045)
+# Blender's defaults take 34-37 s from 1 to 64 spp (0.108 to 0.030) and 0.0094 at 4096 in 361 s:
+# 3x faster than them means under 12 s, which ray marching reaches only above an RMSE of 0.05. Unbiased
 # volumes with our denoising matched Cycles' own at 64 and 256 spp (0.031 and 0.018): on RMSE
 # the route buys nothing, what it buys is glints OIDN does not smear (tests/test_denoise_but_glints.py).
 # Volume bounces are for clouds (bench/clouds.py, "Clouds"): their light grows with bounces up to
