@@ -136,18 +136,16 @@ def _sparkle_weight(tree, layers, glint, clean):
     The ground is the darkest denoised pixel of the 3x3 around, not the rest of the raw pixel: a
     grain that covers most of a pixel leaves little rest, and its dim mirror was kept raw as a
     dark speck (a quarter of the demo's noise at Preview).
-    The weight rises from 0 at 1.5 times the ground to 1 at 3 times (SPARKLE_BAR). Measured on the
-    demo at Preview, 320x180 (σ seed to seed; glint RMSE; sparkle light kept against 1024 samples):
-    1 to 2: 0.0072, 0.054, 1.09; 1.5 to 3: 0.0059, 0.046, 1.03; 2 to 4: 0.0053, 0.040, 0.98;
-    all denoised: 0.0049, 0.024, 0.92; all raw: 0.061, 0.091, 0.95.
-    Half of what was left of that 0.0059 sat in 0.2 % of the pixels: dim grains a few samples
-    caught, raw at two or three times their light in one seed, denoised in the other. The
-    denoiser tells them apart: it takes such a spike out and keeps most of a sparkle many samples
-    saw, so the denoised pixel must stand above the ground too (DENOISED_BAR). With 1.2 to 1.6:
-    0.0048, 0.035, 0.97 at Preview, but the 16-sample sparkles of tests/test_denoise_but_glints.py
-    kept 0.918 of their light on 5.0, whose denoiser keeps less of them (0.970 on 5.2). 1.1 to 1.3
-    keeps 0.959 there and gives 0.0051 (seeds 0, 1; 0.0055 over four seeds), 0.038, 1.00; Preview
-    is 72 samples for it: 0.0047 (0.0050), 0.036, 0.94.
+    Two ramps (SPARKLE_BAR, DENOISED_BAR), multiplied. The glint light alone let through dim
+    grains a few samples caught: raw at two or three times their light in one seed, gone in the
+    next (half the demo's noise at Preview, in 0.2 % of its pixels). The denoiser takes such a
+    spike out and keeps most of a sparkle many samples saw, so the denoised pixel must stand
+    above the ground too. Measured on the demo at Preview, 320x180 (σ seed to seed; glint RMSE
+    and sparkle light kept against 1024 samples): glint bar alone 0.0059, 0.046, 1.03; with the
+    denoised bar at 1.1-1.3, 0.0047, 0.036, 0.94 at 72 spp. A denoised bar of 1.2-1.6 is quieter,
+    but the 16-sample sparkles of tests/test_denoise_but_glints.py then kept 0.918 of their light
+    on 5.0, whose denoiser keeps less of them (0.959 at 1.1-1.3). More rows: README, "Denoising
+    all but the glints".
     """
     grains = h.math(tree, "GREATER_THAN", layers.outputs[GLINT_AOV], 0.0, label="Glinting Grains Hit")
     glint_level = _luminance(tree, glint)
@@ -161,7 +159,7 @@ def _sparkle_weight(tree, layers, glint, clean):
     # A grain that a few samples caught is a spike the denoiser takes out; one that many caught
     # stays above the ground in the denoised pixel too. Only the second is a sparkle to keep raw.
     survives = _ramp(tree, clean_level, ground.outputs[0], DENOISED_BAR, "Survives the Denoiser")
-    both = h.math(tree, "MULTIPLY", outshines, survives, label="Both")
+    both = h.math(tree, "MULTIPLY", outshines, survives, label="Outshines and Survives")
     weight = h.math(tree, "MULTIPLY", grains.outputs[0], both.outputs[0], label="Sparkle Weight")
     return weight.outputs[0]
 
