@@ -113,10 +113,12 @@ def ensure_sky(scene, elevation, azimuth):
 
 
 def scene_bounds(scene, margin):
-    """World-space box around the scene's renderable geometry (ours excluded), plus margin."""
+    """World-space box around the scene's renderable geometry (ours excluded but a dune field;
+    its horizon ring reaches kilometres), plus margin."""
     kinds = {"MESH", "CURVE", "SURFACE", "META", "FONT", "POINTCLOUD", "VOLUME"}
     corners = [obj.matrix_world @ Vector(corner) for obj in scene.objects
-               if obj.type in kinds and obj.get(own.OBJECT_KEY) is None and not obj.hide_render
+               if obj.type in kinds and obj.get(own.OBJECT_KEY) in (None, *own.SCENERY)
+               and not obj.hide_render
                for corner in obj.bound_box]
     if not corners:
         half = units.to_units(scene, 10.0)

@@ -5,14 +5,20 @@ import math
 import bpy
 import numpy as np
 
-from ..core import dunes
-from . import atmosphere, clouds, footprints, post, presets, sand, walker
+from . import atmosphere, clouds, dunes, footprints, post, presets, sand, walker
+from .progress import Progress
 
-TERRAIN_SIZE = (120.0, 60.0)  # wide enough that the camera never sees past the dunes
-TERRAIN_SPACING = 0.25
+# The dune field (lengths in metres; the demo's scene is in metres): transverse ridges 30 m apart
+# under the scene's wind, the land beyond reaching the horizon.
+DUNES = {"width": 120.0, "depth": 120.0, "cell_size": 0.5, "spacing": 30.0, "sand_supply": 3.0, "seed": 3,
+         "use_second_wind": False, "second_wind_angle": 0.0, "second_wind_share": 0.0, "horizon": 20000.0,
+         "sand_material": True}
+WIND = (0.6, 3.0, 0.0)  # metres per second, from the south: crests run east-west, along the walk
 FRAMES = (1, 240)
 SUN = (math.radians(6.0), 0.85)  # low, ahead-left of the walker, in view: slopes lit from the side
 CAMERA_OFFSET = (-4.5, -1.5, 0.9)  # behind, beside and low, metres: the prints read in raking sun
+CAMERA_CLEARANCE = 0.6  # metres the camera keeps above the sand under it
+CAMERA_SMOOTH_FRAMES = 12  # the lift over a crest eases in and out over about this many frames
 CAMERA_SHIFT = (0.05, 0.05)  # lens shift, not a tilt: the walker low in frame, the low sun in it
 AIR = {"density": 0.003, "dust_density": 0.002, "margin": 20.0}
 CLOUDS = {"coverage": 0.4, "seed": 2, "base": 700.0, "thickness": 1200.0, "step": 400.0,
@@ -21,40 +27,44 @@ PRINTS = {"depth": 0.05, "rim": 0.015}  # metres: soft sand
 SAND = {"Threshold": 0.985, "Glint Size": 0.012, "Facing Power": 4.0, "Strength": 60.0, "Seed": 1.0}
 
 
-def dune_terrain(collection):
-    vertices, quads = dunes.grid(*TERRAIN_SIZE, TERRAIN_SPACING)
-    mesh = bpy.data.meshes.new("Dunes")
-    mesh.vertices.add(len(vertices))
-    mesh.vertices.foreach_set("co", vertices.astype(np.float32).ravel())
-    mesh.loops.add(quads.size)
-    mesh.loops.foreach_set("vertex_index", quads.ravel().astype(np.int32))
-    mesh.polygons.add(len(quads))
-    mesh.polygons.foreach_set("loop_start", (np.arange(len(quads)) * 4).astype(np.int32))
-    mesh.update(calc_edges=True)
-    uv = vertices[quads.ravel(), :2] / np.array(TERRAIN_SIZE) + 0.5
-    mesh.uv_layers.new(name="UVMap").uv.foreach_set("vector", uv.astype(np.float32).ravel())
-    mesh.shade_smooth()
-    terrain = bpy.data.objects.new("Dunes", mesh)
-    collection.objects.link(terrain)
-    return terrain
-
-
-def follow_camera(scene, walker):
-    """A camera that keeps its offset from the walker and looks at it (constraints, no scripts)."""
+def follow_camera(scene, figure, terrain):
+    """A camera that keeps its offset from the walker, never below CAMERA_CLEARANCE over the sand
+    under it, and looks at the walker: its path is keyed on every frame (no scripts), its aim a
+    Track To constraint."""
     camera = bpy.data.objects.new("Demo Camera", bpy.data.cameras.new("Demo Camera"))
     camera.data.lens = 24.0
-    camera.data.clip_end = 40000.0  # the clouds are kilometres away
+    camera.data.clip_end = 40000.0  # the clouds are kilometres away, the land reaches 20 km
     camera.data.shift_x, camera.data.shift_y = CAMERA_SHIFT
     scene.collection.objects.link(camera)
     scene.camera = camera
-    camera.location = CAMERA_OFFSET
-    follow = camera.constraints.new("COPY_LOCATION")
-    follow.target = walker
-    follow.use_offset = True
+    frames = np.arange(FRAMES[0], FRAMES[1] + 1)
+    places = []
+    for frame in frames:
+        scene.frame_set(int(frame))
+        places.append(np.array(figure.matrix_world.translation) + np.array(CAMERA_OFFSET))
+    scene.frame_set(FRAMES[0])
+    places = np.array(places)
+    top = float(np.max([v[2] for v in terrain.bound_box]))
+    floor = walker.ground_heights(terrain, places[:, :2], top) + CAMERA_CLEARANCE
+    places[:, 2] = np.maximum(places[:, 2], eased_lift(floor))
+    for frame, place in zip(frames, places, strict=True):
+        camera.location = tuple(place)
+        camera.keyframe_insert("location", frame=int(frame))
     aim = camera.constraints.new("TRACK_TO")
-    aim.target = walker
+    aim.target = figure
     aim.track_axis, aim.up_axis = "TRACK_NEGATIVE_Z", "UP_Y"
     return camera
+
+
+def eased_lift(floor):
+    """The lowest heights the camera may take, eased: a running maximum over
+    CAMERA_SMOOTH_FRAMES either side, then smoothed by the same span, never below the floor."""
+    span = CAMERA_SMOOTH_FRAMES
+    padded = np.pad(floor, span, mode="edge")
+    highest = np.array([padded[i:i + 2 * span + 1].max() for i in range(len(floor))])
+    kernel = np.hanning(2 * span + 1)
+    smooth = np.convolve(np.pad(highest, span, mode="edge"), kernel / kernel.sum(), mode="valid")
+    return np.maximum(smooth, floor)
 
 
 def build(context):
@@ -67,7 +77,10 @@ def build(context):
     scene.frame_start, scene.frame_end = FRAMES
     # Its denoising comes with the post effects below, once there is a camera and a sun.
     presets.apply(scene, {k: v for k, v in presets.PRESETS["PREVIEW"].items() if k != presets.DENOISE})
-    terrain = dune_terrain(scene.collection)
+    scene.sandscape_atmosphere.wind = WIND
+    progress = Progress("Sandscape demo")
+    terrain = dunes.build(scene, DUNES, progress)["field"]
+    progress.end()
     context.view_layer.objects.active = terrain
     sand.apply(terrain, {**sand.default_glint_values(), **SAND}, ripple_values=sand.default_ripples(scene))
     steps = scene.sandscape_footprints
@@ -78,7 +91,7 @@ def build(context):
     for name, value in PRINTS.items():
         setattr(steps, name, value)
     footprints.paint(scene, steps)
-    camera = follow_camera(scene, steps.walker)
+    camera = follow_camera(scene, steps.walker, terrain)
     air = scene.sandscape_atmosphere
     air.sun_elevation, air.sun_azimuth = SUN
     for name, value in AIR.items():

@@ -23,6 +23,8 @@ TERRAIN_KEY = "sandscape_terrain"  # on footprint data: the terrain it belongs t
 SUN, DUST_VOLUME, CLOUDS = "sun", "dust_volume", "clouds"
 WALKER, WALK_PATH = "walker", "walk_path"
 FOOTPRINTS, PATCH, PRINT_FRAME = "footprints", "footprint_patch", "print_frame"
+DUNES, DUNE_HORIZON = "dunes", "dune_horizon"
+SCENERY = (DUNES,)  # ours, yet the scene's ground: counted where the scene's geometry is
 # Kinds of materials, images, worlds
 SAND, DUST, CLOUD_MATERIAL, CLOAK = "sand", "dust", "clouds", "cloak"
 GLINT_NOISE, PRINT_MAP = "glint_noise", "print_map"

@@ -1,51 +1,112 @@
-"""Wind-shaped dunes as a numpy height field.
+"""A dune field from an artist's settings, in metres: lattice sizes, the slab run, the surface,
+the field's mesh. The model is core/dune_field.py, the surface core/dune_surface.py and the
+horizon ring core/dune_horizon.py.
 
-Transverse dunes under a wind blowing along +X: a long, gentle windward (stoss) slope up to
-a crest, then a short lee slip face no steeper than sand's angle of repose (about 33
-degrees). Crest lines meander across the wind and their height varies; wind ripples
-(centimetres, a few per metre, across the wind) ride on top.
+Scale: the slab model has no metres of its own. Under one wind and the default supply its
+dunes stand SPACING_CELLS coarse cells apart after COARSE_STEPS (measured,
+tests/test_dune_model.py), so the coarse cell is the spacing asked for over SPACING_CELLS; a
+slab is a third of that cell. Other supplies and winds keep that cell: scarcer sand gives
+smaller, isolated dunes on the same scale, as in nature.
+
+Sand supply is the depth the sand would have if spread evenly (Wasson and Hyde's equivalent
+sand thickness), given in percent of the dune spacing so that a dune class keeps its sand
+when the spacing changes.
 """
+
+import math
 
 import numpy as np
 
-REPOSE_DEGREES = 33.0
+from . import dune_field, dune_surface
+
+SPACING_CELLS = 48.0
+COARSE_LIMIT = 512  # coarse cells along a side: a larger field repeats the lattice (it is periodic)
+FINE_LIMIT = 1024  # fine cells along a side
+FINE_CELLS_PER_SPACING = 90  # refine until this many (brinks and slip faces are sharp by then)
+SPACING_SMOOTH_CELLS = 2.0  # the spacing is measured on the field blurred this much (sand sheet out)
+BYTES_PER_VERTEX = 600  # Blender's mesh with UVs and our arrays while building it (measured: ~450)
 
 
-def dune_heights(x, y, wavelength=18.0, height=1.8, crest=0.8, meander=3.0, meander_length=30.0,
-                 ripple_height=0.02, ripple_length=0.35, seed=0):
-    """Height in metres at (x, y) metres; vectorised over any array shape.
+def supply_slabs(supply_percent):
+    """Mean slabs per coarse cell for a sand supply in percent of the spacing."""
+    return supply_percent / 100.0 * SPACING_CELLS * dune_field.SLAB_ASPECT
 
-    wavelength: dune spacing along the wind; crest: where the crest sits in each period
-    (0.8 = windward slope four times longer than the lee); meander: sideways crest wander.
+
+def plan(width, depth, cell, spacing):
+    """The lattice for a field: (coarse cells a side, coarse cell in metres, refinements)."""
+    coarse_cell = spacing / SPACING_CELLS
+    wanted = math.ceil(max(width, depth) / coarse_cell / 8.0) * 8
+    coarse = int(min(max(wanted, 64), COARSE_LIMIT))
+    refinements = 0  # the mesh reads the fine lattice through a smooth spline at any cell size
+    while (coarse_cell / 2**refinements > spacing / FINE_CELLS_PER_SPACING
+           and coarse * 2 ** (refinements + 1) <= FINE_LIMIT):
+        refinements += 1
+    return coarse, coarse_cell, refinements
+
+
+def winds(second_angle=None, second_share=0.0):
+    """The slab model's winds and its frame: (((unit direction, share), ...), frame angle).
+
+    The model's grid is laid along the net transport (the shares' resultant), at `frame angle`
+    radians from the main wind: one wind blows along the grid's x, two take equal angles either
+    side of it (the grid's two axes drive dunes harder than its diagonals, so neither wind is
+    favoured). The second wind is turned by second_angle (counter-clockwise) from the main one.
     """
-    rng = np.random.default_rng(seed)
-    phase_a, phase_b = rng.uniform(0, 2 * np.pi, 2)
-    x = np.asarray(x, dtype=np.float64)
-    y = np.asarray(y, dtype=np.float64)
-    wander = meander * np.sin(2 * np.pi * y / meander_length + phase_a)
-    s = np.mod((x + wander) / wavelength, 1.0)  # 0 at a trough, `crest` at the crest
-    stoss = s / crest
-    lee = (1.0 - s) / (1.0 - crest)
-    # Smooth rise (sin^2 ease-in) on the windward side; a straight slip face on the lee.
-    profile = np.where(s < crest, np.sin(0.5 * np.pi * stoss) ** 2, lee)
-    amplitude = height * (0.75 + 0.25 * np.sin(2 * np.pi * y / (1.7 * meander_length) + phase_b))
-    ripples = ripple_height * np.sin(2 * np.pi * (x + 0.3 * wander) / ripple_length)
-    return amplitude * profile + ripples * (0.3 + 0.7 * profile)
+    if second_angle is None or second_share <= 0.0:
+        return (((1.0, 0.0), 1.0),), 0.0
+    share = min(max(second_share, 0.0), 1.0)
+    net = np.array([1.0 - share + share * math.cos(second_angle), share * math.sin(second_angle)])
+    frame = math.atan2(net[1], net[0]) if np.hypot(*net) > 1e-9 else second_angle / 2.0
+    return (((math.cos(-frame), math.sin(-frame)), 1.0 - share),
+            ((math.cos(second_angle - frame), math.sin(second_angle - frame)), share)), frame
 
 
-def max_lee_slope_degrees(wavelength=18.0, height=1.8, crest=0.8):
-    """Steepest slip face the parameters give (without ripples), in degrees."""
-    return float(np.degrees(np.arctan(height / ((1.0 - crest) * wavelength))))
+def grow_surface(width, depth, cell, spacing, supply_percent, seed, wind_angle, second_angle=None,
+                 second_share=0.0, progress=None):
+    """Grow the field and make its surface. Returns (DuneSurface, facts) where facts holds what
+    was run: lattice sizes, slabs (constant through the run), measured spacing in metres."""
+    coarse, coarse_cell, refinements = plan(width, depth, cell, spacing)
+    blowing, frame = winds(second_angle, second_share)
+    field = dune_field.grow((coarse, coarse), supply_slabs(supply_percent), seed, blowing, refinements,
+                            progress=progress)
+    fine_cell = coarse_cell / 2**refinements
+    surface = dune_surface.surface_from_slabs(field.slabs, fine_cell, wind_angle + frame)
+    spacing_found = spacing_cells(field.slabs, SPACING_SMOOTH_CELLS * 2**refinements) * fine_cell
+    facts = {"coarse": coarse, "refinements": refinements, "fine": field.slabs.shape[0],
+             "fine_cell": fine_cell,
+             "slabs": field.total(), "period": coarse * coarse_cell, "spacing": spacing_found,
+             "height": float(np.percentile(surface.levels[0], 99.0)), "frame": frame}
+    return surface, facts
 
 
-def grid(size_x, size_y, spacing, **dune):
-    """Vertices (N, 3) and quads (M, 4) of a dune height field centred on the origin."""
-    nx = max(int(round(size_x / spacing)), 1)
-    ny = max(int(round(size_y / spacing)), 1)
-    xs = np.linspace(-size_x / 2, size_x / 2, nx + 1)
-    ys = np.linspace(-size_y / 2, size_y / 2, ny + 1)
-    x, y = np.meshgrid(xs, ys)
-    z = dune_heights(x, y, **dune)
-    index = np.arange((nx + 1) * (ny + 1)).reshape(ny + 1, nx + 1)
-    quads = np.stack([index[:-1, :-1], index[:-1, 1:], index[1:, 1:], index[1:, :-1]], -1).reshape(-1, 4)
-    return np.stack([x, y, z], -1).reshape(-1, 3), quads
+def spacing_cells(slabs, smooth=SPACING_SMOOTH_CELLS):
+    """Dune spacing along the lattice's x (the main wind) in cells: the power-weighted mean
+    wavenumber within an octave either side of the along-wind spectrum's peak, rows averaged,
+    on the field blurred by `smooth` cells (the sand sheet's slab noise does not count)."""
+    z = dune_surface.gaussian_periodic(np.asarray(slabs, np.float64), smooth)
+    power = (np.abs(np.fft.rfft(z - z.mean(axis=1, keepdims=True), axis=1)) ** 2).mean(axis=0)
+    power[0] = 0.0
+    peak = int(np.argmax(power))
+    if peak == 0:
+        return float(z.shape[1])
+    k = np.arange(len(power))
+    band = (k >= peak / 2.0) & (k <= peak * 2.0)
+    return float(z.shape[1] / (np.sum(k[band] * power[band]) / power[band].sum()))
+
+
+def field_mesh(surface, width, depth, cell):
+    """The field's vertices (N, 3) in metres, quads (M, 4) and per-corner UVs (M * 4, 2)."""
+    x, y, quads = dune_surface.grid(width, depth, cell)
+    z = surface.heights(x, y)
+    vertices = np.stack([x, y, z], -1).reshape(-1, 3)
+    uv = vertices[quads.ravel(), :2] / np.array([width, depth]) + 0.5
+    return vertices, quads, uv
+
+
+def vertex_count(width, depth, cell):
+    return (max(int(round(width / cell)), 1) + 1) * (max(int(round(depth / cell)), 1) + 1)
+
+
+def estimated_bytes(width, depth, cell, ring_vertices=0):
+    """Memory the field (and ring) will take while being built, about."""
+    return (vertex_count(width, depth, cell) + ring_vertices) * BYTES_PER_VERTEX

@@ -9,7 +9,18 @@ refusal of the rest is tested beside the function.
 import numpy as np
 import pytest
 
-from core import atmosphere, dunes, footprints, glints, noise_hash, paths, post
+from core import (
+    atmosphere,
+    dune_field,
+    dune_horizon,
+    dune_surface,
+    dunes,
+    footprints,
+    glints,
+    noise_hash,
+    paths,
+    post,
+)
 
 CASES = 10_000
 RNG_SEED = 20261122
@@ -135,5 +146,42 @@ def test_post(rng):
 
 
 def test_dunes(rng):
+    """The dune field at extreme points, sizes and winds: every height finite, every lattice
+    within its limits (the operator's limits bound the inputs)."""
+    field = dune_field.grow((32, 32), 4.0, 1, steps=5)
+    surface = dune_surface.surface_from_slabs(field.slabs, 0.5, float(rng.uniform(-10, 10)))
     x, y = extreme(rng, CASES, -3, 7), extreme(rng, CASES, -3, 7)
-    assert finite(dunes.dune_heights(x, y))
+    blur = np.abs(extreme(rng, CASES, -3, 7))
+    assert finite(surface.heights(x, y, blur))
+    for _ in range(CASES):
+        width, depth = 10.0 ** rng.uniform(-2, 6, 2)
+        cell = 10.0 ** rng.uniform(-3, min(4, np.log10(min(width, depth))))
+        spacing = max(4 * cell, 10.0 ** rng.uniform(-2, 5))
+        coarse, coarse_cell, refinements = dunes.plan(width, depth, cell, spacing)
+        assert 64 <= coarse <= dunes.COARSE_LIMIT and coarse * 2**refinements <= dunes.FINE_LIMIT
+        assert np.isfinite(coarse_cell) and coarse_cell > 0
+    supplies = rng.uniform(0.05, 30.0, CASES)
+    assert finite(dunes.supply_slabs(supplies)) and (dunes.supply_slabs(supplies) > 0).all()
+    for angle, share in zip(extreme(rng, CASES // 10, -6, 2), rng.uniform(0, 1, CASES // 10), strict=True):
+        blowing, frame = dunes.winds(angle, share)
+        assert np.isfinite(frame) and all(abs(np.hypot(*d) - 1) < 1e-9 for d, _ in blowing)
+
+
+def test_dune_meshes(rng):
+    """Slope limiting and the horizon's loops on random and degenerate triangles: finite, never
+    raised, loops always joined."""
+    for _ in range(CASES // 1000):
+        vertices = np.c_[rng.uniform(-1, 1, (500, 2)) * 10.0 ** rng.uniform(-3, 3), extreme(rng, 500, -6, 6)]
+        vertices[rng.random(500) < 0.05, :2] = 0.0  # coincident points: zero-area triangles
+        triangles = rng.integers(0, 500, (1000, 3))
+        before = vertices[:, 2].copy()
+        dune_surface.limit_triangle_slopes(vertices, triangles, float(rng.uniform(1, 89)), max_rounds=50)
+        assert finite(vertices) and (vertices[:, 2] <= before).all()
+    for _ in range(CASES // 10):
+        offsets = dune_horizon.loop_offsets(10.0 ** rng.uniform(-3, 3), 10.0 ** rng.uniform(-1, 6))
+        assert finite(offsets) and len(offsets) < 2000
+        n, m = rng.integers(4, 60, 2)
+        inner = np.sort(rng.uniform(0, 4, n))
+        outer = np.sort(rng.uniform(0, 4, m))
+        triangles = dune_horizon.zip_loops(np.arange(n), inner, n + np.arange(m), outer)
+        assert len(triangles) == n + m and triangles.min() >= 0 and triangles.max() < n + m

@@ -8,6 +8,7 @@ from ..node_groups import catalog
 
 # (operator, label, icon) of the 3D viewport's Sandscape submenu.
 SCENE_ENTRIES = (
+    ("sandscape.add_dunes", "Dunes", "MOD_OCEAN"),
     ("sandscape.add_walker", "Walker", "ARMATURE_DATA"),
     ("sandscape.add_atmosphere", "Atmosphere", "LIGHT_SUN"),
     ("sandscape.add_clouds", "Clouds", "OUTLINER_DATA_VOLUME"),

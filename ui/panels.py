@@ -1,9 +1,10 @@
-"""The Sandscape tab in the 3D viewport sidebar: a Sandscape panel with sub-panels for Sand,
-Footprints, Atmosphere, Clouds and Render. Buttons are live only when their operator's poll() allows."""
+"""The Sandscape tab in the 3D viewport sidebar: a Sandscape panel with sub-panels for
+Dunes, Sand, Footprints, Atmosphere, Clouds and Render. Buttons are live only when their operator's
+poll() allows."""
 
 import bpy
 
-from ..blender import sand
+from ..blender import dunes, sand
 
 
 class SandscapeTab:
@@ -57,6 +58,31 @@ class SANDSCAPE_PT_sand(SandscapeSubPanel, bpy.types.Panel):
         image = sand.image_node(material)
         if image is not None:
             layout.template_ID(image, "image", open="image.open")
+
+
+DUNE_SECTIONS = (
+    ("Field", ("width", "depth", "cell_size", "horizon")),
+    ("Dunes", ("spacing", "sand_supply", "seed", "sand_material")),
+)
+
+
+class SANDSCAPE_PT_dunes(SandscapeSubPanel, bpy.types.Panel):
+    bl_label = "Dunes"
+    bl_idname = "SANDSCAPE_PT_dunes"
+
+    def draw(self, context):
+        layout = self.layout
+        settings = context.scene.sandscape_dunes
+        _sections(layout, settings, DUNE_SECTIONS)
+        layout.prop(settings, "use_second_wind")
+        column = layout.column(align=True)
+        column.active = settings.use_second_wind
+        column.prop(settings, "second_wind_angle")
+        column.prop(settings, "second_wind_share")
+        layout.label(text="Wind: the atmosphere's (dust, ripples, clouds)", icon="INFO")
+        found = dunes.scene_dunes(context.scene)
+        text = "Regrow Dunes" if found else "Add Dunes"
+        layout.operator("sandscape.add_dunes", text=text, icon="MOD_OCEAN")
 
 
 # (heading, settings shown under it); the operators read the same settings.
@@ -168,5 +194,5 @@ def _sections(layout, settings, sections):
             column.prop(settings, name)
 
 
-classes = (SANDSCAPE_PT_main, SANDSCAPE_PT_sand, SANDSCAPE_PT_footprints, SANDSCAPE_PT_atmosphere,
-           SANDSCAPE_PT_clouds, SANDSCAPE_PT_render)
+classes = (SANDSCAPE_PT_main, SANDSCAPE_PT_dunes, SANDSCAPE_PT_sand, SANDSCAPE_PT_footprints,
+           SANDSCAPE_PT_atmosphere, SANDSCAPE_PT_clouds, SANDSCAPE_PT_render)

@@ -1,5 +1,5 @@
 """Scene settings: what the sidebar edits and the operators read (scene.sandscape_footprints,
-scene.sandscape_atmosphere, scene.sandscape_post).
+scene.sandscape_atmosphere, scene.sandscape_post, scene.sandscape_clouds, scene.sandscape_dunes).
 
 Scripts set them too: scene.sandscape_footprints.stride = 0.6, then
 bpy.ops.sandscape.paint_footprints(). Limits in the UI are soft: a value out of range, NaN or
@@ -153,17 +153,24 @@ CLOUD_TYPES = (("STRATUS", "Stratus", "Low, flat sheets"),
                ("MIXED", "Mixed", "The type varies over the sky (the weather map's own type)"))
 
 
+def length_field(for_operator):
+    """A length setting as an operator takes it (scene units, not kept between runs) or as the
+    scene stores it (metres under `key`, read in scene units): one definition for both."""
+    def distance(key, name, metres, description, soft_max, soft_min=0.0):
+        if for_operator:
+            return FloatProperty(name=name, default=metres, soft_min=soft_min, soft_max=soft_max,
+                                 subtype="DISTANCE", unit="LENGTH", description=description,
+                                 options={"SKIP_SAVE"})
+        return length(key, name, metres, description, soft_max, soft_min)
+    return distance
+
+
 def cloud_fields(for_operator):
     """The cloud settings, defined once: scene.sandscape_clouds stores lengths in metres (read in
     scene units); the operator takes every one of them in scene units, and a value it is not
     given comes from the scene's settings."""
     skip = {"options": {"SKIP_SAVE"}} if for_operator else {}
-
-    def distance(key, name, metres, description, soft_max, soft_min=0.0):
-        if for_operator:
-            return FloatProperty(name=name, default=metres, soft_min=soft_min, soft_max=soft_max,
-                                 subtype="DISTANCE", unit="LENGTH", description=description, **skip)
-        return length(key, name, metres, description, soft_max, soft_min)
+    distance = length_field(for_operator)
 
     fields = {
         "coverage": FloatProperty(name="Coverage", default=0.4, soft_min=0.0, soft_max=1.0, subtype="FACTOR",
@@ -268,8 +275,56 @@ class SandscapePostSettings(bpy.types.PropertyGroup):
                         description="How far outside the frame (in frame widths) the rays fade out")
 
 
+def dune_fields(for_operator):
+    """The dune field's settings, defined once as the clouds' are (scene.sandscape_dunes and the
+    operator's arguments)."""
+    skip = {"options": {"SKIP_SAVE"}} if for_operator else {}
+    distance = length_field(for_operator)
+    return {
+        "width": distance("width_m", "Width", 200.0, "Extent of the field along X", 2000.0, 1.0),
+        "depth": distance("depth_m", "Depth", 200.0, "Extent of the field along Y", 2000.0, 1.0),
+        "cell_size": distance("cell_size_m", "Cell Size", 0.5, "Distance between the field's vertices", 4.0,
+                              0.05),
+        "spacing": distance("spacing_m", "Dune Spacing", 30.0, "Distance from crest to crest of transverse "
+                            "dunes (real ones: 20 m to 500 m); they stand about a tenth of it high",
+                            500.0, 1.0),
+        "sand_supply": FloatProperty(
+            name="Sand Supply", default=3.0, soft_min=0.3, soft_max=10.0, subtype="PERCENTAGE", precision=2,
+            description="How much sand there is: the depth it would have spread evenly, in percent of the "
+            "Dune Spacing (3 % of 30 m is 90 cm). About 1 % or less gathers into barchans on bare "
+            "ground, 3 % and more into transverse ridges", **skip),
+        "seed": IntProperty(name="Seed", default=0, min=0, description="Another seed, another field", **skip),
+        "use_second_wind": BoolProperty(name="Second Wind", default=False, description="A second wind "
+                                        "takes turns with the scene's: two winds far apart build linear "
+                                        "(seif) dunes", **skip),
+        "second_wind_angle": FloatProperty(name="Second Wind Angle", default=math.radians(120.0),
+                                           subtype="ANGLE", soft_min=-math.pi, soft_max=math.pi,
+                                           description="Direction of the second wind, turned from the "
+                                           "scene's wind (counter-clockwise seen from above)", **skip),
+        "second_wind_share": FloatProperty(name="Second Wind Share", default=0.5, soft_min=0.0, soft_max=1.0,
+                                           subtype="FACTOR", description="Share of the time the second "
+                                           "wind blows", **skip),
+        "horizon": distance("horizon_m", "Horizon", 20000.0, "How far the land reaches beyond the field: a "
+                            "ring that coarsens with distance and follows the Earth's curve, so the dunes "
+                            "meet the horizon; 0 leaves the field's edge", 50000.0),
+        "sand_material": BoolProperty(name="Sand Material", default=True, description="Put the Sandscape "
+                                      "sand material on the field (a field that has one keeps it)", **skip),
+    }
+
+
+DUNE_LIMITS = {
+    "width": (0.01, 1e6), "depth": (0.01, 1e6), "cell_size": (1e-3, 1e4), "spacing": (0.01, 1e5),
+    "sand_supply": (0.05, 30.0), "seed": (0, INT_MAX), "second_wind_angle": (-4 * math.pi, 4 * math.pi),
+    "second_wind_share": (0.0, 1.0), "horizon": (0.0, 1e6),
+}
+
+SandscapeDuneSettings = type("SandscapeDuneSettings", (bpy.types.PropertyGroup,),
+                             {"__annotations__": dune_fields(False), "LIMITS": DUNE_LIMITS,
+                              "__doc__": "The dune field's settings (scene.sandscape_dunes)"})
+
+
 classes = (SandscapeFootprintSettings, SandscapeAtmosphereSettings, SandscapeCloudSettings,
-           SandscapePostSettings)
+           SandscapePostSettings, SandscapeDuneSettings)
 
 
 def register():
@@ -277,9 +332,11 @@ def register():
     bpy.types.Scene.sandscape_atmosphere = PointerProperty(type=SandscapeAtmosphereSettings)
     bpy.types.Scene.sandscape_post = PointerProperty(type=SandscapePostSettings)
     bpy.types.Scene.sandscape_clouds = PointerProperty(type=SandscapeCloudSettings)
+    bpy.types.Scene.sandscape_dunes = PointerProperty(type=SandscapeDuneSettings)
 
 
 def unregister():
+    del bpy.types.Scene.sandscape_dunes
     del bpy.types.Scene.sandscape_clouds
     del bpy.types.Scene.sandscape_post
     del bpy.types.Scene.sandscape_atmosphere

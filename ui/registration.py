@@ -8,12 +8,12 @@ before they go.
 import bpy
 
 from ..blender import post
-from ..operators import atmosphere, clouds, demo, footprints, nodes, render, sand, walker
+from ..operators import atmosphere, clouds, demo, dunes, footprints, nodes, render, sand, walker
 from ..operators import post as post_operators
 from . import menus, panels, properties
 
-MODULES = (properties, sand, walker, footprints, atmosphere, clouds, post_operators, demo, render, nodes,
-           panels, menus, post)
+MODULES = (properties, dunes, sand, walker, footprints, atmosphere, clouds, post_operators, demo, render,
+           nodes, panels, menus, post)
 
 
 def register():
