@@ -118,34 +118,89 @@ AVALANCHE_EDGES = (((0, 1), REPOSE_SLABS), ((1, 0), REPOSE_SLABS), ((1, 1), REPO
                    ((1, -1), REPOSE_SLABS + 1))
 
 
-def avalanche(h, edges=AVALANCHE_EDGES):
+SPARSE_SHARE = 0.05  # below this share of cells still moving, avalanches look only near them
+
+
+def avalanche(h, edges=AVALANCHE_EDGES, sparse_below=SPARSE_SHARE):
     """Move slabs down every step steeper than its edge allows until none is left (in place).
 
     Each pass takes the edges of one kind: the higher side of every step gives half the excess
     (rounded down, so a stack never goes below zero) to the lower side, all edges at once;
     passes repeat until a round moves nothing. Returns the rounds taken.
+
+    A slide down a long slip face takes a round per cell, yet touches few cells: once under
+    SPARSE_SHARE of the cells moved in a round, a pass looks only at the edges of the cells
+    that moved since that kind of edge was last looked at (an edge neither of whose cells moved
+    cannot have turned steep), which moves exactly the slabs the full pass would.
     """
+    ny, nx = h.shape
+    flat = h.reshape(-1)
     neighbour, step, over, flow, scratch = (np.empty_like(h) for _ in range(5))
+    dirty = [None] * len(edges)  # per kind: cells moved since its last pass (None: all of them)
     rounds = 0
     while True:
-        moved = False
-        for (dy, dx), threshold in edges:
-            _shift_into(neighbour, h, dy, dx, scratch)
-            np.subtract(h, neighbour, out=step)  # this cell minus its neighbour at -(dy, dx)
-            np.abs(step, out=over)
-            if over.max() <= threshold:
-                continue
-            over -= threshold - 1
-            np.maximum(over, 0, out=over)
-            over //= 2
-            np.sign(step, out=flow)
-            flow *= over  # > 0: this cell gives to that neighbour; < 0: it takes
-            h -= flow
-            h += _shift_into(neighbour, flow, -dy, -dx, scratch)
-            moved = True
+        moved_any = False
+        for kind, ((dy, dx), threshold) in enumerate(edges):
+            if dirty[kind] is None:
+                _shift_into(neighbour, h, dy, dx, scratch)
+                np.subtract(h, neighbour, out=step)  # this cell minus its neighbour at -(dy, dx)
+                np.abs(step, out=over)
+                if over.max() <= threshold:
+                    dirty[kind] = np.zeros(0, np.int64)
+                    continue
+                over -= threshold - 1
+                np.maximum(over, 0, out=over)
+                over //= 2
+                np.sign(step, out=flow)
+                flow *= over  # > 0: this cell gives to that neighbour; < 0: it takes
+                h -= flow
+                h += _shift_into(neighbour, flow, -dy, -dx, scratch)
+                given = np.flatnonzero(flow)
+                moved = np.concatenate([given, _neighbours(given, -dy, -dx, ny, nx)])
+            else:
+                moved = _sparse_pass(flat, dirty[kind], dy, dx, threshold, ny, nx)
+            dirty[kind] = np.zeros(0, np.int64)
+            if len(moved):
+                moved_any = True
+                dense = len(moved) > sparse_below * flat.size
+                for other in range(len(edges)):
+                    if dense or dirty[other] is None:
+                        dirty[other] = None
+                    else:
+                        dirty[other] = np.concatenate([dirty[other], moved])
         rounds += 1
-        if not moved:
+        if not moved_any:
             return rounds
+
+
+def _neighbours(cells, dy, dx, ny, nx):
+    """Flat indices of the cells (dy, dx) away from flat indices `cells`, wrapping."""
+    return ((cells // nx + dy) % ny) * nx + (cells % nx + dx) % nx
+
+
+def _distinct(cells):
+    """The distinct values of an index array, sorted (a sort: cheaper than hashing here)."""
+    cells = np.sort(cells)
+    return cells[np.concatenate([[True], cells[1:] != cells[:-1]])] if len(cells) else cells
+
+
+def _sparse_pass(flat, dirty, dy, dx, threshold, ny, nx):
+    """One pass over the edges of one kind touching `dirty` cells; returns the cells that moved."""
+    if not len(dirty):
+        return dirty
+    # The edge of kind (dy, dx) belongs to the cell p whose neighbour is p - (dy, dx).
+    owners = _distinct(np.concatenate([dirty, _neighbours(dirty, dy, dx, ny, nx)]))
+    lower = _neighbours(owners, -dy, -dx, ny, nx)
+    step = flat[owners] - flat[lower]
+    over = (np.abs(step) - (threshold - 1)) // 2
+    steep = over > 0
+    if not steep.any():
+        return np.zeros(0, np.int64)
+    owners, lower = owners[steep], lower[steep]
+    flow = (np.sign(step[steep]) * over[steep]).astype(flat.dtype)
+    flat[owners] -= flow  # owners are unique, and so are their lower neighbours
+    flat[lower] += flow
+    return np.concatenate([owners, lower])
 
 
 class SlabField:

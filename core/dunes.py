@@ -23,6 +23,7 @@ SPACING_CELLS = 48.0
 COARSE_LIMIT = 512  # coarse cells along a side: a larger field repeats the lattice (it is periodic)
 FINE_LIMIT = 1024  # fine cells along a side
 FINE_CELLS_PER_SPACING = 90  # refine until this many (brinks and slip faces are sharp by then)
+MESH_CELLS_PER_FINE = 0.6  # or until the fine cell is this share of the mesh's
 SPACING_SMOOTH_CELLS = 2.0  # the spacing is measured on the field blurred this much (sand sheet out)
 BYTES_PER_VERTEX = 600  # Blender's mesh with UVs and our arrays while building it (measured: ~450)
 
@@ -37,9 +38,11 @@ def plan(width, depth, cell, spacing):
     coarse_cell = spacing / SPACING_CELLS
     wanted = math.ceil(max(width, depth) / coarse_cell / 8.0) * 8
     coarse = int(min(max(wanted, 64), COARSE_LIMIT))
-    refinements = 0  # the mesh reads the fine lattice through a smooth spline at any cell size
-    while (coarse_cell / 2**refinements > spacing / FINE_CELLS_PER_SPACING
-           and coarse * 2 ** (refinements + 1) <= FINE_LIMIT):
+    # Fine enough for sharp brinks, and no finer than the mesh can show (it reads the lattice
+    # through a smooth spline at any cell size).
+    target = max(spacing / FINE_CELLS_PER_SPACING, MESH_CELLS_PER_FINE * cell)
+    refinements = 0
+    while coarse_cell / 2**refinements > target and coarse * 2 ** (refinements + 1) <= FINE_LIMIT:
         refinements += 1
     return coarse, coarse_cell, refinements
 
@@ -64,7 +67,25 @@ def winds(second_angle=None, second_share=0.0):
 def grow_surface(width, depth, cell, spacing, supply_percent, seed, wind_angle, second_angle=None,
                  second_share=0.0, progress=None):
     """Grow the field and make its surface. Returns (DuneSurface, facts) where facts holds what
-    was run: lattice sizes, slabs (constant through the run), measured spacing in metres."""
+    was run: lattice sizes, slabs (constant through the run), measured spacing in metres.
+
+    The last KEPT fields grown are kept: the same settings again (a redo, or only the horizon or
+    the material changed) cost nothing. One seed gives one field, so a kept one is the same."""
+    key = (width, depth, cell, spacing, supply_percent, seed, wind_angle, second_angle, second_share)
+    if key not in _kept:
+        _kept[key] = _grow_surface(*key, progress)
+        while len(_kept) > KEPT:
+            _kept.pop(next(iter(_kept)))
+    surface, facts = _kept[key]
+    return surface, dict(facts)
+
+
+KEPT = 2
+_kept = {}
+
+
+def _grow_surface(width, depth, cell, spacing, supply_percent, seed, wind_angle, second_angle, second_share,
+                  progress):
     coarse, coarse_cell, refinements = plan(width, depth, cell, spacing)
     blowing, frame = winds(second_angle, second_share)
     field = dune_field.grow((coarse, coarse), supply_slabs(supply_percent), seed, blowing, refinements,

@@ -1,6 +1,7 @@
 """bpy.ops.sandscape.build_demo_scene: every part of the desert in one call, into an empty file."""
 
 import bpy
+import numpy as np
 import pytest
 
 
@@ -19,7 +20,8 @@ def test_builds_every_part(sandscape):
     assert ours("walker") and ours("sun") and ours("dust_volume")
     tree = scene.compositing_node_group
     assert tree is not None and tree.get("sandscape_compositor")
-    assert [c.type for c in scene.camera.constraints] == ["COPY_LOCATION", "TRACK_TO"]
+    assert [c.type for c in scene.camera.constraints] == ["TRACK_TO"]
+    assert ours("dunes") == [terrain] and ours("dune_horizon")
     assert not scene.cycles.use_denoising
 
 
@@ -27,3 +29,22 @@ def test_refuses_a_scene_with_meshes():
     bpy.ops.mesh.primitive_cube_add()
     with pytest.raises(RuntimeError, match="empty scene"):
         bpy.ops.sandscape.build_demo_scene()
+
+
+def test_every_frame_the_camera_is_above_the_sand_and_the_walker_on_it(sandscape):
+    """The whole animation, frame by frame: the camera at least half a metre above the sand under
+    it (it keeps 0.6 m), the walker's feet on the sand within 5 cm."""
+    bpy.ops.sandscape.build_demo_scene()
+    scene = bpy.context.scene
+    terrain, walker = scene.sandscape_footprints.terrain, scene.sandscape_footprints.walker
+    top = float(np.max([v[2] for v in terrain.bound_box]))
+    cameras, feet = [], []
+    for frame in range(scene.frame_start, scene.frame_end + 1):
+        scene.frame_set(frame)
+        cameras.append(np.array(scene.camera.matrix_world.translation))
+        feet.append(np.array(walker.matrix_world.translation))
+    cameras, feet = np.array(cameras), np.array(feet)
+    ground = sandscape.blender.walker.ground_heights
+    assert (cameras[:, 2] - ground(terrain, cameras[:, :2], top)).min() > 0.5
+    assert np.abs(feet[:, 2] - ground(terrain, feet[:, :2], top)).max() < 0.05
+    assert np.linalg.norm(np.diff(cameras, axis=0), axis=1).max() < 0.2  # no jumps: 1.4 m/s is 6 cm a frame
