@@ -117,6 +117,15 @@ def test_atmosphere_panel_shows_its_settings_and_button():
     assert operators == ["sandscape.add_atmosphere", "sandscape.add_post_effects"]
 
 
+def test_dunes_panel_shows_its_settings_and_button():
+    layout = RecordingLayout()
+    bpy.types.SANDSCAPE_PT_dunes.draw(types.SimpleNamespace(layout=layout), bpy.context)
+    shown = {call[2] for call in layout.calls if call[0] == "prop"}
+    settings = bpy.context.scene.sandscape_dunes
+    assert {p.identifier for p in settings.bl_rna.properties} - {"rna_type", "name"} == shown
+    assert [c[1:] for c in layout.calls if c[0] == "operator"] == [("sandscape.add_dunes", "Add Dunes")]
+
+
 def test_every_operator_polls_through_the_shared_mixin(sandscape):
     names = [name for name in dir(bpy.types) if name.startswith("SANDSCAPE_OT_")]
     assert len(names) >= 10
@@ -152,8 +161,9 @@ def test_shift_a_offers_sandscape(sandscape):
     assert sandscape.ui.menus.draw_view3d_add in bpy.types.VIEW3D_MT_add._dyn_ui_initialize()
     layout = RecordingLayout()
     bpy.types.VIEW3D_MT_sandscape_add.draw(types.SimpleNamespace(layout=layout), bpy.context)
-    assert [c[1] for c in layout.calls] == ["sandscape.add_walker", "sandscape.add_atmosphere",
-                                           "sandscape.add_clouds", "sandscape.build_demo_scene"]
+    assert [c[1] for c in layout.calls] == ["sandscape.add_dunes", "sandscape.add_walker",
+                                           "sandscape.add_atmosphere", "sandscape.add_clouds",
+                                           "sandscape.build_demo_scene"]
 
 
 @pytest.mark.parametrize("tree_type, expected", [
