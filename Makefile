@@ -46,6 +46,7 @@ bench: $(STAMP)
 	$(PY) bench/footprints.py
 	$(PY) bench/footprint_dicing.py
 	$(PY) bench/atmosphere.py
+	$(PY) bench/dunes.py
 	$(PY) bench/effects.py
 	$(PY) bench/optimize.py
 	$(PY) bench/quality.py

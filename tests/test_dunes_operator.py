@@ -113,6 +113,7 @@ BAD_INPUT = [
     ({"sand_supply": 0.0}, "Sand Supply"),
     ({"horizon": -1.0}, "Horizon"),
     ({"second_wind_share": math.nan}, "Second Wind Share"),
+    ({"second_wind_angle": math.inf}, "Second Wind Angle"),
     ({"cell_size": 100.0}, "larger than the field"),
     ({"spacing": 1.0}, "at least 4 cells"),
     ({"width": 1e6, "depth": 1e6, "cell_size": 0.01}, "would need about"),
@@ -219,3 +220,39 @@ def test_the_walker_walks_on_the_dunes_and_its_prints_paint(sandscape):
         ground = sandscape.blender.walker.ground_heights(field, position[None, :2], top)[0]
         feet.append(position[2] - ground)
     assert np.abs(feet).max() < 0.05
+
+
+def slider_cases():
+    """Each numeric setting alone at each end of its slider, then all at their lows and highs."""
+    rna = bpy.ops.sandscape.add_dunes.get_rna_type()
+    props = [p for p in rna.properties if p.type in {"INT", "FLOAT"}]
+    ends = {p.identifier: (p.soft_min, min(p.soft_max, 1e6)) for p in props}
+    cases = [{name: value} for name, pair in ends.items() for value in pair]
+    cases.append({name: pair[0] for name, pair in ends.items()})
+    cases.append({name: pair[1] for name, pair in ends.items()})
+    return cases
+
+
+def test_every_setting_at_its_slider_ends_builds_finite_land_or_is_refused():
+    """From the small field, each setting to each end of its slider (and all at once): the
+    operator finishes with finite land no steeper than repose, or refuses with a report."""
+    finished = 0
+    for case in slider_cases():
+        booleans = {"use_second_wind": True} if "second_wind_angle" in case or len(case) > 1 else {}
+        try:
+            outcome = bpy.ops.sandscape.add_dunes(**{**SMALL, **booleans, **case})
+        except RuntimeError as error:
+            assert "Traceback" not in str(error), (case, str(error))
+            continue
+        assert outcome == {"FINISHED"}, case
+        finished += 1
+        field = bpy.context.active_object
+        vertices = local_vertices(field)
+        assert np.isfinite(vertices).all(), case
+        quads = np.empty(len(field.data.polygons) * 4, np.int32)
+        field.data.polygons.foreach_get("vertices", quads)
+        triangles = dune_surface.quad_triangles(quads.reshape(-1, 4))
+        assert dune_surface.face_slopes(vertices, triangles).max() <= 34.0, case
+        for ring in ours("dune_horizon"):
+            assert np.isfinite(local_vertices(ring)).all(), case
+    assert finished > len(slider_cases()) / 2
