@@ -15,10 +15,11 @@ cell high, so a difference of REPOSE_SLABS between neighbours is atan(2/3) = 33.
   always in shadow; otherwise it hops again. A hop grows with the height it starts from
   (SPEEDUP: Momiji et al. 2000, the wind's speed-up over a dune's back), which keeps windward
   slopes gentle.
-- Where a stack stands more than REPOSE_SLABS above a neighbour, slabs avalanche down.
+- Where a stack stands more than REPOSE_SLABS above a neighbour (one slab more across a
+  diagonal), slabs avalanche down.
 
 Vectorised, not slab by slab: each sweep picks a share BATCH of the cells at once, moves all
-their slabs in parallel hops and avalanches the whole grid until it rests. Slabs are only ever
+their slabs in parallel hops and avalanches until the grid rests. Slabs are only ever
 moved, never made or lost (tested), and one seed gives one field.
 
 Coarse to fine: a coarse grid grows the dunes (their spacing comes from the run), then each
@@ -244,7 +245,7 @@ class SlabField:
 
     def run(self, steps, winds, progress=None):
         """`steps` time units under `winds`: ((unit direction (dx, dy), share), ...), taken in
-        turns of one time unit each, in proportion to their shares."""
+        turns of TURN_STEPS time units, in proportion to their shares."""
         sweeps = int(round(steps / BATCH))
         schedule = wind_schedule(winds, sweeps)
         for index, direction in enumerate(schedule):
@@ -260,8 +261,8 @@ class SlabField:
 
 
 def wind_schedule(winds, sweeps):
-    """Which wind blows in each sweep: turns of one time unit (1 / BATCH sweeps), each wind's
-    turns spread evenly in proportion to its share."""
+    """Which wind blows in each sweep: turns of TURN_STEPS time units (TURN_STEPS / BATCH
+    sweeps), each wind's turns spread evenly in proportion to its share."""
     directions = [np.asarray(d, np.float64) / np.linalg.norm(d) for d, _ in winds]
     shares = np.array([max(float(s), 0.0) for _, s in winds])
     shares = shares / shares.sum() if shares.sum() > 0 else np.full(len(winds), 1.0 / len(winds))

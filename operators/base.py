@@ -34,6 +34,24 @@ class SandscapeOperator:
         return {"CANCELLED"}
 
 
+class SceneSettings:
+    """For an operator whose arguments are also a scene's settings (Add Clouds, Add Dunes): its
+    settings(context) gives every value (passed, else the scene's) and problem(context, values)
+    what is wrong with them; the scene keeps what a run used."""
+
+    def checked_settings(self, context):
+        """(values, the first problem with them or None)."""
+        values = self.settings(context)
+        return values, self.problem(context, values)
+
+    def remember(self, stored, values):
+        for name, value in values.items():
+            self.store(stored, name, value)
+
+    def store(self, stored, name, value):
+        setattr(stored, name, value)
+
+
 # Conditions shared by several operators' POLL tables.
 def active_mesh(context):
     obj = context.active_object

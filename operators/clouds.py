@@ -4,12 +4,12 @@ import bpy
 
 from ..blender import clouds, ownership
 from ..ui.properties import CLOUD_LIMITS, cloud_fields
-from .base import SandscapeOperator, editable_problem, has_camera, value_problem
+from .base import SandscapeOperator, SceneSettings, editable_problem, has_camera, value_problem
 
 FIELDS = cloud_fields(True)
 
 
-class SANDSCAPE_OT_add_clouds(SandscapeOperator, bpy.types.Operator):
+class SANDSCAPE_OT_add_clouds(SceneSettings, SandscapeOperator, bpy.types.Operator):
     """Add or update a cloud layer over what the scene camera sees: a weather map, cloud types, wind
     and real volume scattering"""
 
@@ -42,18 +42,18 @@ class SANDSCAPE_OT_add_clouds(SandscapeOperator, bpy.types.Operator):
                 return f"Image '{image.name}' has no pixels"
         return editable_problem(ownership.scene_object(context.scene, ownership.CLOUDS))
 
+    def store(self, stored, name, value):
+        if name == "weather_image":  # a name here, an image pointer on the scene
+            stored.weather_image = bpy.data.images.get(value) if value else None
+        else:
+            setattr(stored, name, value)
+
     def execute(self, context):
         scene = context.scene
-        values = self.settings(context)
-        problem = self.problem(context, values)
+        values, problem = self.checked_settings(context)
         if problem:
             return self.fail(problem)
-        stored = scene.sandscape_clouds
-        for name, value in values.items():  # the scene remembers what was used
-            if name == "weather_image":
-                stored.weather_image = bpy.data.images.get(value) if value else None
-            else:
-                setattr(stored, name, value)
+        self.remember(scene.sandscape_clouds, values)
         image = bpy.data.images[values["weather_image"]] if values["weather_source"] == "IMAGE" else None
         done = clouds.apply(scene, values, image)
         if done["layer"] is None:

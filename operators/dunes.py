@@ -8,7 +8,7 @@ from ..blender import dunes, ownership, units
 from ..blender.progress import Progress
 from ..core import dunes as model
 from ..ui.properties import DUNE_LIMITS, dune_fields
-from .base import SandscapeOperator, editable_problem, value_problem
+from .base import SandscapeOperator, SceneSettings, editable_problem, value_problem
 
 FIELDS = dune_fields(True)
 SPACING_CELLS = 4  # a dune narrower than this many cells falls between the vertices
@@ -23,7 +23,7 @@ def available_memory():
         return FALLBACK_MEMORY
 
 
-class SANDSCAPE_OT_add_dunes(SandscapeOperator, bpy.types.Operator):
+class SANDSCAPE_OT_add_dunes(SceneSettings, SandscapeOperator, bpy.types.Operator):
     """Add or regrow a dune field shaped by the scene's wind (Werner's slab model): slip faces at the
     angle of repose, barchans or ridges by the sand supply, land out to the horizon"""
 
@@ -70,13 +70,10 @@ class SANDSCAPE_OT_add_dunes(SandscapeOperator, bpy.types.Operator):
 
     def execute(self, context):
         scene = context.scene
-        values = self.settings(context)
-        problem = self.problem(context, values)
+        values, problem = self.checked_settings(context)
         if problem:
             return self.fail(problem)
-        stored = scene.sandscape_dunes
-        for name, value in values.items():  # the scene remembers what was used
-            setattr(stored, name, value)
+        self.remember(scene.sandscape_dunes, values)
         progress = Progress("Sandscape dunes", context)
         try:
             facts = dunes.build(scene, values, progress)
