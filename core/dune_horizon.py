@@ -4,8 +4,9 @@ dunes where a camera in the field can make them out.
 
 - Loop 0 is the field's own boundary (the same points), so field and ring meet without a crack.
 - Each further loop is a rectangle a step further out. The step, radial and along the loop, is
-  the field's cell near the field and ANGULAR_STEP of the distance beyond it further out: a
-  camera anywhere in the field sees every step under at most about that angle.
+  the field's cell near the field and ANGULAR_STEP of the distance beyond it further out (dunes
+  30 m apart still stand out 2 km away, seen from 50 m up), FAR_ANGULAR_STEP past NEAR_M, where
+  they are under a pixel tall from the ground and the haze takes them.
 - Heights come from the same periodic surface, blurred by BLUR_PER_STEP of the step (a coarse
   loop cannot hold dunes smaller than its step; sampled raw they would alias into spikes), and
   lowered by the Earth's curvature beyond the field (d^2 / 2R): seen from the ground the land
@@ -19,8 +20,14 @@ import math
 import numpy as np
 
 EARTH_RADIUS_M = 6_371_000.0
-ANGULAR_STEP = 0.025
-BLUR_PER_STEP = 0.6
+ANGULAR_STEP = 0.0125  # within NEAR_M of the field: dunes there still show from 50 m up
+NEAR_M = 2000.0
+FAR_ANGULAR_STEP = 0.05  # beyond: dunes under a pixel tall from the ground, and the haze
+BLUR_PER_STEP = 0.4
+
+
+def angular_step(offset):
+    return ANGULAR_STEP if offset <= NEAR_M else FAR_ANGULAR_STEP
 
 
 def loop_offsets(cell, reach):
@@ -28,7 +35,7 @@ def loop_offsets(cell, reach):
     until `reach` is passed."""
     offsets = [0.0]
     while offsets[-1] < reach:
-        offsets.append(offsets[-1] + max(cell, ANGULAR_STEP * offsets[-1]))
+        offsets.append(offsets[-1] + max(cell, angular_step(offsets[-1]) * offsets[-1]))
     return np.array(offsets)
 
 
@@ -83,7 +90,7 @@ def ring(surface, width, depth, cell, reach, boundary):
     for index in range(1, len(offsets)):
         offset, step = offsets[index], offsets[index] - offsets[index - 1]
         half_x, half_y = width / 2 + offset, depth / 2 + offset
-        along = max(cell, ANGULAR_STEP * offset)
+        along = max(cell, angular_step(offset) * offset)
         nx = min(max(int(math.ceil(2 * half_x / along)), 1), count_x)
         ny = min(max(int(math.ceil(2 * half_y / along)), 1), count_y)
         x, y, position = rectangle_loop(half_x, half_y, nx, ny)

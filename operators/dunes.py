@@ -94,9 +94,10 @@ def report_line(scene, values, facts, seconds):
     if facts.get("ring_vertices"):
         reach = units.length_text(scene, values["horizon"])
         ring = f"; land out to {reach} ({facts['ring_vertices']:,} vertices)"
+    relaid = f"; laid {' and '.join(facts['relaid'])} on the new sand" if facts["relaid"] else ""
     return (f"Dune field '{facts['field'].name}': {facts['vertices']:,} vertices, dunes "
             f"{length(facts['spacing'])} apart and up to {length(facts['height'])} high, grown from "
-            f"{facts['slabs']:,} slabs along the scene's wind{ring}; {seconds:.1f} s")
+            f"{facts['slabs']:,} slabs along the scene's wind{ring}{relaid}; {seconds:.1f} s")
 
 
 classes = (SANDSCAPE_OT_add_dunes,)
