@@ -140,7 +140,7 @@ def main(argv=None):
         "between cases); peak is the process's peak resident memory less its peak before the operator. "
         "Slopes of the field's triangles (both ways of cutting each quad): steepest, median slip face "
         "(downwind-facing, over 20°) and median windward (upwind-facing, over 2°); spacing as the "
-        "run measured it against the setting.",
+        "run measured it across the crests, whichever way they run, against the setting.",
         "",
         "| case | lattice | vertices (field + ring) | s | peak MiB | steepest | slip face | windward | "
         "spacing | goal |",

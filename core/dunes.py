@@ -101,18 +101,30 @@ def _grow_surface(width, depth, cell, spacing, supply_percent, seed, wind_angle,
 
 
 def spacing_cells(slabs, smooth=SPACING_SMOOTH_CELLS):
-    """Dune spacing along the lattice's x (the main wind) in cells: the power-weighted mean
-    wavenumber within an octave either side of the along-wind spectrum's peak, rows averaged,
-    on the field blurred by `smooth` cells (the sand sheet's slab noise does not count)."""
+    """Dune spacing in cells, crest to crest across the crests whichever way they run (linear
+    dunes lie along the net wind, transverse ones across it). The field, blurred by `smooth`
+    cells (the sand sheet's slab noise does not count), has its slopes' main direction (the
+    gradient structure tensor's first eigenvector); its 2D spectrum is summed along the crests
+    into a spectrum across them, whose peak gives the spacing as the power-weighted mean
+    wavenumber within an octave either side."""
     z = dune_surface.gaussian_periodic(np.asarray(slabs, np.float64), smooth)
-    power = (np.abs(np.fft.rfft(z - z.mean(axis=1, keepdims=True), axis=1)) ** 2).mean(axis=0)
-    power[0] = 0.0
-    peak = int(np.argmax(power))
+    gy, gx = np.gradient(z)
+    tensor = np.array([[np.sum(gx * gx), np.sum(gx * gy)], [np.sum(gx * gy), np.sum(gy * gy)]])
+    across = np.linalg.eigh(tensor)[1][:, -1]
+    power = np.abs(np.fft.fft2(z - z.mean())) ** 2
+    ky = np.fft.fftfreq(z.shape[0])[:, None]
+    kx = np.fft.fftfreq(z.shape[1])[None, :]
+    along = np.abs(kx * across[0] + ky * across[1])  # cycles per cell across the crests
+    step = 1.0 / max(z.shape)
+    bins = np.rint(along / step).astype(int)
+    spectrum = np.bincount(bins.ravel(), power.ravel())
+    spectrum[0] = 0.0
+    peak = int(np.argmax(spectrum))
     if peak == 0:
-        return float(z.shape[1])
-    k = np.arange(len(power))
+        return float(max(z.shape))
+    k = np.arange(len(spectrum))
     band = (k >= peak / 2.0) & (k <= peak * 2.0)
-    return float(z.shape[1] / (np.sum(k[band] * power[band]) / power[band].sum()))
+    return float(1.0 / (step * np.sum(k[band] * spectrum[band]) / spectrum[band].sum()))
 
 
 def field_mesh(surface, width, depth, cell):

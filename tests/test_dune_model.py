@@ -206,6 +206,15 @@ def test_crests_are_sharp(transverse):
     assert not np.isfinite(crest_to_slip_face([sine], step, SPACING)).any()
 
 
+@pytest.mark.parametrize("waves", [(8, 0), (6, 8), (0, 5)])
+def test_the_reported_spacing_is_across_the_crests_whichever_way_they_run(waves):
+    """Straight crests at any angle (linear dunes lie along the wind): the spacing reported is
+    the distance across them, not along the lattice's x (which reads 32 cells for the second)."""
+    y, x = np.mgrid[0:256, 0:256]
+    z = 3.0 + np.sin(2.0 * np.pi * (waves[0] * x + waves[1] * y) / 256.0)
+    assert dunes.spacing_cells(z, smooth=1.0) == pytest.approx(256.0 / math.hypot(*waves), rel=0.01)
+
+
 def test_spacing_and_height_follow_the_setting(transverse):
     """The spacing asked for, measured on the mesh as the along-wind spectral peak; heights
     about a tenth of it (real transverse dunes: 1/20 to 1/8)."""

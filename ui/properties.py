@@ -291,8 +291,8 @@ def dune_fields(for_operator):
         "sand_supply": FloatProperty(
             name="Sand Supply", default=3.0, soft_min=0.3, soft_max=10.0, subtype="PERCENTAGE", precision=2,
             description="How much sand there is: the depth it would have spread evenly, in percent of the "
-            "Dune Spacing (3 % of 30 m is 90 cm). About 1 % or less gathers into barchans on bare "
-            "ground, 3 % and more into transverse ridges", **skip),
+            "Dune Spacing (3 % of 30 m is 90 cm). Under 1 % leaves separate dunes on bare ground "
+            "with horns downwind (barchans); 3 % and more builds transverse ridges", **skip),
         "seed": IntProperty(name="Seed", default=0, min=0, description="Another seed, another field", **skip),
         "use_second_wind": BoolProperty(name="Second Wind", default=False, description="A second wind "
                                         "takes turns with the scene's: two winds far apart build linear "
