@@ -33,7 +33,7 @@ def wind_angle(scene, field=None):
     wind = np.array(tuple(scene.sandscape_atmosphere.wind), np.float64)
     if field is not None:
         wind = np.linalg.inv(np.array(field.matrix_world)[:3, :3]) @ wind
-    held_inf = np.abs(wind) >= 3.4028234e38  # an inf typed into a single-precision field
+    held_inf = np.abs(wind) >= units.FLOAT_MAX
     if not np.all(np.isfinite(wind)) or held_inf.any() or math.hypot(wind[0], wind[1]) <= 1e-12:
         return None
     return math.atan2(wind[1], wind[0])
@@ -104,26 +104,30 @@ def build(scene, values, progress):
     progress.stage("sand material", 0.95, 1.0)
     material = _material(scene, field, ring, values["sand_material"])
     facts.update(field=field, ring=ring, material=material, vertices=len(vertices),
-                 angle=angle, camera_problem=clip_problem(scene, reach / scale), relaid=relay(scene, field))
+                 angle=angle, camera_problem=clip_problem(scene, reach / scale))
+    facts["relaid"], facts["relay_problem"] = relay(scene, field)
     return facts
 
 
 def relay(scene, field):
     """What stood on the old sand, laid on the new: our stand-in's path and the painted prints
     (their patch and cut followed the old heights: the figure floated on a slab over a hole).
-    Returns what was laid again, for the report."""
+    Returns (what was laid again, why the prints could not be), for the report."""
     settings = scene.sandscape_footprints
     if settings.terrain != field:
-        return []
+        return [], None
     relaid = []
     figure = settings.walker
     if figure is not None and figure.get(own.OBJECT_KEY) == own.WALKER:
         walker.ensure_walker(scene, field, *footprints.frame_range(scene, settings))
         relaid.append("the walker's path")
     if footprints.find_object(scene, own.PATCH, field) is not None:
-        footprints.paint(scene, settings)
+        try:
+            footprints.paint(scene, settings)
+        except footprints.FootprintError as error:  # the field stands; the prints wait for a repaint
+            return relaid, f"Prints not repainted on the new sand: {error}"
         relaid.append("the prints")
-    return relaid
+    return relaid, None
 
 
 def _material(scene, field, ring, wanted):

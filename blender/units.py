@@ -6,6 +6,8 @@ import math
 
 import bpy
 
+FLOAT_MAX = 3.4028234e38  # where Blender's single-precision properties keep an inf typed into them
+
 
 def metres_per_unit(scene):
     scale = scene.unit_settings.scale_length

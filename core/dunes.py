@@ -25,7 +25,11 @@ FINE_LIMIT = 1024  # fine cells along a side
 FINE_CELLS_PER_SPACING = 90  # refine until this many (brinks and slip faces are sharp by then)
 MESH_CELLS_PER_FINE = 0.6  # or until the fine cell is this share of the mesh's
 SPACING_SMOOTH_CELLS = 2.0  # the spacing is measured on the field blurred this much (sand sheet out)
+KEPT = 2  # fields grown last, kept for a redo
 BYTES_PER_VERTEX = 600  # Blender's mesh with UVs and our arrays while building it (measured: ~450)
+
+
+_kept = {}  # settings -> (surface, facts), oldest first
 
 
 def supply_slabs(supply_percent):
@@ -78,10 +82,6 @@ def grow_surface(width, depth, cell, spacing, supply_percent, seed, wind_angle, 
             _kept.pop(next(iter(_kept)))
     surface, facts = _kept[key]
     return surface, dict(facts)
-
-
-KEPT = 2
-_kept = {}
 
 
 def _grow_surface(width, depth, cell, spacing, supply_percent, seed, wind_angle, second_angle, second_share,

@@ -100,12 +100,11 @@ def _within(value, low, high):
     return low - slack(low) <= value <= high + slack(high)
 
 
-FLOAT_MAX = 3.4028234e38  # where Blender's single-precision properties keep an inf typed into them
-
-
 def _number(value, prop, scene):
-    if not math.isfinite(value) or abs(value) >= FLOAT_MAX:
-        return str(math.copysign(math.inf, value)) if math.isfinite(value) else str(value)
+    if math.isnan(value):
+        return str(value)
+    if abs(value) >= units.FLOAT_MAX:
+        return str(math.copysign(math.inf, value))
     if prop.unit == "LENGTH":
         return units.length_text(scene, value)
     if prop.subtype == "ANGLE":

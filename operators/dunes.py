@@ -81,8 +81,9 @@ class SANDSCAPE_OT_add_dunes(SceneSettings, SandscapeOperator, bpy.types.Operato
             seconds = progress.end()
         dunes.activate(context, facts["field"])
         self.report({"INFO"}, report_line(scene, values, facts, seconds))
-        if facts["camera_problem"]:
-            self.report({"WARNING"}, facts["camera_problem"])
+        for warning in (facts["camera_problem"], facts["relay_problem"]):
+            if warning:
+                self.report({"WARNING"}, warning)
         return {"FINISHED"}
 
 
