@@ -157,7 +157,71 @@ def demo(bpy, readback, _scenes, _quick):
             f"({times[True] / times[False]:.1f}x).", ""]
 
 
-PARTS = {"sampling": sampling, "bounces": bounces, "phases": phases, "demo": demo}
+def _rss_mib():
+    for line in pathlib.Path("/proc/self/status").read_text().splitlines():
+        if line.startswith("VmRSS:"):
+            return int(line.split()[1]) / 1024
+    return float("nan")
+
+
+def _noise(readback, scene):
+    """(seconds of the first render, per-render noise): two renders with other seeds, RMSE of
+    their difference / sqrt 2, over display-clipped linear pixels."""
+    times, frames = [], []
+    for seed in (1, 2):
+        scene.cycles.seed = seed
+        started = time.perf_counter()
+        frames.append(np.clip(readback.render(scene)[..., :3], 0.0, 1.0))
+        times.append(time.perf_counter() - started)
+    return min(times), float(np.sqrt(np.mean((frames[0] - frames[1]) ** 2) / 2.0))
+
+
+def routes(bpy, readback, scenes, _quick):
+    """Voxel grid against procedural: Add Clouds (with the geometry evaluated) on the default
+    layer, the process memory it adds, and the demo frame with each route and without clouds."""
+    from importlib import import_module
+
+    clouds = import_module(f"{session.MODULE}.blender.clouds")
+    lines = ["| route | Add Clouds s (default layer) | memory added MiB | voxels |", "|---|---|---|---|"]
+    for evaluation in ("GRID", "PROCEDURAL"):
+        scene, _ = build(bpy, readback, scenes, coverage=0.0)  # the bench's scene, no layer yet
+        before = _rss_mib()
+        started = time.perf_counter()
+        bpy.ops.sandscape.add_clouds(evaluation=evaluation, coverage=0.4)
+        bpy.context.evaluated_depsgraph_get().update()
+        seconds = time.perf_counter() - started
+        plan = clouds.plan(scene, clouds.scene_settings(scene))
+        lines.append(f"| {evaluation.lower()} | {seconds:.2f} | {_rss_mib() - before:.0f} | "
+                     f"{plan['voxels']:,} |")
+        print(lines[-1], flush=True)
+    lines += ["", "| demo frame 120, 320x180 | render s | noise (RMSE of one render) | vs no clouds |",
+              "|---|---|---|---|"]
+    session.reset()
+    bpy.ops.sandscape.build_demo_scene()
+    scene = bpy.context.scene
+    scene.render.resolution_x, scene.render.resolution_y, scene.render.resolution_percentage = 320, 180, 100
+    scene.frame_set(120)
+    readback.render(scene)  # compiles the kernels
+    rows = {}
+    for evaluation in ("GRID", "PROCEDURAL", None):
+        layer = next(o for o in scene.objects if o.get("sandscape_object") == "clouds")
+        if evaluation is not None:
+            scene.sandscape_clouds.evaluation = evaluation
+            clouds.apply(scene, clouds.scene_settings(scene))
+            layer = next(o for o in scene.objects if o.get("sandscape_object") == "clouds")
+        layer.hide_render = evaluation is None
+        rows[evaluation] = _noise(readback, scene)
+        print(evaluation, rows[evaluation], flush=True)
+    bare = rows[None][0]
+    for evaluation, (seconds, noise) in rows.items():
+        lines.append(f"| {'no clouds' if evaluation is None else evaluation.lower()} | {seconds:.1f} | "
+                     f"{noise:.4f} | {seconds / bare:.2f}x |")
+    marched = "ray-marched" if scene.cycles.volume_biased else "unbiased"
+    return lines + [f"\n{scene.cycles.samples} spp, {scene.cycles.volume_bounces} volume bounces, {marched} "
+                    "volumes (the demo's own preset).", ""]
+
+
+PARTS = {"sampling": sampling, "bounces": bounces, "phases": phases, "demo": demo, "routes": routes}
 
 
 def main(argv=None):

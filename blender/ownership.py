@@ -29,6 +29,7 @@ SCENERY = (DUNES,)  # ours, yet the scene's ground: counted where the scene's ge
 SAND, DUST, CLOUD_MATERIAL, CLOAK = "sand", "dust", "clouds", "cloak"
 GLINT_NOISE, PRINT_MAP = "glint_noise", "print_map"
 SKY = "sky"
+CLOUD_GRID = "cloud_grid"  # the cloud layer's own geometry-nodes tree
 
 
 def mark(block, key, kind, **links):

@@ -7,13 +7,15 @@ Model (seeds 001 and 003, with their errata fixed):
   seed 001 for stratus, cumulus and cumulonimbus. Types in between blend the four numbers:
   lerp(lerp(stratus, cumulus, sat(2 t)), cumulonimbus, sat(2 t - 1)); the seed's inner lerp
   takes an unclamped 2 t, which extrapolates past cumulus for t > 0.5.
-- The weather map's coverage: a 2D fBm noise n over the ground, cloud where n rises past an
-  edge chosen so that the Coverage setting is the share of sky under cloud; precipitation
+- The weather map's coverage: a 2D fBm noise n over the ground (looked up at a warped position,
+  so outlines are fractal), cloud where n rises past an edge chosen so that the Coverage setting
+  is the share of sky under cloud; precipitation
   makes clouds denser; a type per point.
 - Shape: Perlin-Worley noise (Perlin fBm dilated by inverted Worley), times the gradient,
   remapped by the coverage (seed 001: remap(shape, 1 - coverage, 1, 0, 1) x coverage), eroded
-  at the edges by a Worley fBm on a curl-like distorted position: wispy at the base (1 - worley),
-  billowy at the top.
+  at the edges by a Worley fBm on a curl-like distorted position: wispy low (1 - worley),
+  billowy at the top, and not at all at the base itself, so bases are flat; then sharpened
+  (EDGE_GAIN) so the edges are crisp rather than a soft fade.
 - Wind: every noise is sampled at p - wind x time; the shape and detail also at - skew x h
   along the wind, so tops lean downwind.
 """
@@ -26,7 +28,10 @@ from . import noise_perlin as noise
 
 GRADIENTS = {  # seed 001: (a, b, c, d) of smoothstep(a, b, h) - smoothstep(c, d, h)
     "STRATUS": (0.0, 0.065, 0.203, 0.371),
-    "CUMULUS": (0.0, 0.156, 0.468, 0.674),
+    # Seed 001's cumulus is (0, 0.156, 0.468, 0.674): a soft base and every top at about the same
+    # height. Ours rises fast (flat bases) and falls over a wide band, so stronger shapes reach
+    # higher: domes, tall and short clouds side by side.
+    "CUMULUS": (0.0, 0.05, 0.2, 0.7),
     "CUMULONIMBUS": (0.0, 0.188, 0.818, 1.0),
 }
 TYPE_VALUES = {"STRATUS": 0.0, "CUMULUS": 0.5, "CUMULONIMBUS": 1.0}
@@ -37,12 +42,24 @@ TYPE_MAP_SCALE = 2.5  # the Mixed type's map varies this many times more slowly 
 # above the edge, in noise units.
 EDGE_FIT = (0.49993419, 0.06642161, -0.0008259)  # edge = c0 + c1 L + c3 L^3, L = ln((1 - c) / c)
 EDGE_RANGE = (0.006, 0.994)  # where the fit is monotone; 0 and 1 mean none and all
-MAP_SOFTNESS = 0.06
-# Columns turn opaque (T < 0.5 seen straight up) only where the coverage ramp passes about 0.56:
-# remap(shape, 1 - coverage, 1, 0, 1) x coverage leaves thinner cover clear. So the ramp starts
-# this far below the quantile edge (measured straight up at the defaults, tests/test_clouds.py).
-OPAQUE_SHIFT = 0.0325
-SHAPE_DETAIL = 3.0
+# The map is looked up at a warped position (2D fBm displacements of up to WARP / 2 map cells at
+# several scales): coastlines as ragged as real cloud outlines (D about 1.35) rather than the
+# smooth contours of a few octaves, with the noise's value distribution (so the calibration) kept.
+WARP = 1.2
+WARP_DETAIL = 4.0
+WARP_ROUGHNESS = 0.6
+WARP_FREQUENCY = 2.0
+WARP_OFFSETS = (31.7, 77.3)  # decorrelate the x and y displacements
+MAP_SOFTNESS = 0.35  # wide: coverage stays below 1 inside the map's blobs, so the shape noise carves clouds
+# The shape noise carves clouds out of the map's coverage ramp, so less sky is under opaque cloud
+# (T < 0.5 seen straight up) than the ramp's own share: the ramp starts this far below the
+# quantile edge to make up for it (fitted on the twin at coverages 0.2, 0.5 and 0.8, map scales
+# 2000 and 6000 m; held by tests/test_clouds.py).
+OPAQUE_SHIFT = 0.177
+SHAPE_DETAIL = 4.0
+SHAPE_ROUGHNESS = 0.62  # 2^-H with H = 0.7: outlines of fractal dimension about 2 - H (Lovejoy's 1.35)
+EDGE_GAIN = 3.0  # the eroded density reaches full within a third of its range: crisp edges, not a fade
+BASE_CALM = 10.0  # erosion grows from none at the base over the lowest 1 / BASE_CALM: flat bases
 DETAIL_WEIGHTS = (0.625, 0.25, 0.125)  # Worley fBm: three octaves, each twice the frequency
 PRECIPITATION_GAIN = 2.0  # full precipitation triples the density
 SEED_STEP = np.array([37.17, 91.43, 13.71])  # noise-space offset per seed
@@ -108,7 +125,10 @@ def drift(wind, time):
 def weather_noise(xy, map_scale, seed):
     """The weather map's noise at world points xy (..., 2) (already drifted)."""
     points = np.asarray(xy, np.float64) / map_scale + seed_offset(seed)[:2]
-    return noise.fbm(noise.perlin_2d, points, MAP_DETAIL).astype(np.float64)
+    shift = [noise.fbm(noise.perlin_2d, points * WARP_FREQUENCY + offset, WARP_DETAIL, WARP_ROUGHNESS)
+             .astype(np.float64) - 0.5 for offset in WARP_OFFSETS]
+    warped = points + WARP * np.stack(shift, axis=-1)
+    return noise.fbm(noise.perlin_2d, warped, MAP_DETAIL).astype(np.float64)
 
 
 def map_coverage(weather, coverage):
@@ -135,7 +155,7 @@ def wind_direction(wind):
 def shape_noise(points, shape_scale, seed):
     """Perlin-Worley noise at world points (..., 3): Perlin fBm dilated by inverted Worley."""
     q = np.asarray(points, np.float64) / shape_scale + seed_offset(seed)
-    perlin = noise.fbm(noise.perlin_3d, q, SHAPE_DETAIL).astype(np.float64)
+    perlin = noise.fbm(noise.perlin_3d, q, SHAPE_DETAIL, SHAPE_ROUGHNESS).astype(np.float64)
     worley = 1.0 - noise.voronoi_f1(2.0 * q).astype(np.float64)
     return remap(perlin, worley - 1.0, 1.0, 0.0, 1.0)
 
@@ -153,6 +173,23 @@ def detail_noise(points, detail_scale, seed, curl, h):
     return total
 
 
+def cloudiness(points, p):
+    """The layer's signed cloudiness at world points: the density over its peak where positive,
+    and how far from cloud (down to -1) where not. It varies smoothly across an edge, so a voxel
+    grid of it, interpolated and then clamped (density_from_cloudiness), keeps the edge where it
+    is; a grid of the clamped density would spread it over a voxel."""
+    points = np.asarray(points, np.float64)
+    xy = (points - drift(p["wind"], p["time"]))[..., :2]
+    cover = map_coverage(weather_noise(xy, p["map_scale"], p["seed"]), p["coverage"])
+    cloud_type = mixed_type(xy, p["map_scale"], p["seed"]) if p["cloud_type"] is None else p["cloud_type"]
+    return shaped_cloudiness(points, {**p, "cloud_type": cloud_type}, cover)
+
+
+def density_from_cloudiness(value, p):
+    """Extinction per unit length from cloudiness: its positive part times the Density."""
+    return np.maximum(np.asarray(value, np.float64), 0.0) * p["density"]
+
+
 def density(points, p):
     """Cloud density (extinction per scene unit) at world points (..., 3) for parameters p, a dict:
     base, thickness, coverage, map_scale, shape_scale, detail_scale, erosion, curl, skew,
@@ -162,12 +199,33 @@ def density(points, p):
     xy = (points - drift(p["wind"], p["time"]))[..., :2]
     cover = map_coverage(weather_noise(xy, p["map_scale"], p["seed"]), p["coverage"])
     cloud_type = mixed_type(xy, p["map_scale"], p["seed"]) if p["cloud_type"] is None else p["cloud_type"]
-    return shaped_density(points, {**p, "cloud_type": cloud_type}, cover)
+    return density_from_cloudiness(shaped_cloudiness(points, {**p, "cloud_type": cloud_type}, cover), p)
+
+
+def region_window(xy, region):
+    """1 inside region (xmin, ymin, xmax, ymax, fade), falling smoothly to 0 at its sides over
+    fade: the layer's density ends inside its box, so no side of the box ever shows."""
+    if region is None:
+        return 1.0
+    xmin, ymin, xmax, ymax, fade = region
+    fade = max(fade, 1e-6)
+    xy = np.asarray(xy, np.float64)
+    window = 1.0
+    for axis, (low, high) in enumerate(((xmin, xmax), (ymin, ymax))):
+        inside = xy[..., axis]
+        window = window * smoothstep(0.0, fade, inside - low) * smoothstep(0.0, fade, high - inside)
+    return window
 
 
 def shaped_density(points, p, cover):
-    """The Cloud Density group: density at world points given the weather map's coverage there
-    (p's cloud_type and precipitation stand for the map's other two channels)."""
+    """The Cloud Density group: density at points given the weather map's coverage there (p's
+    cloud_type and precipitation stand for the map's other two channels; p["region"], optional,
+    the box it fades out in)."""
+    return density_from_cloudiness(shaped_cloudiness(points, p, cover), p)
+
+
+def shaped_cloudiness(points, p, cover):
+    """The Cloud Density group's Cloudiness output (see cloudiness)."""
     points = np.asarray(points, np.float64)
     carried = points - drift(p["wind"], p["time"])
     h = height_fraction(points[..., 2], p["base"], p["thickness"])
@@ -175,9 +233,12 @@ def shaped_density(points, p, cover):
     shaped = shape_noise(skewed, p["shape_scale"], p["seed"]) * height_gradient(h, p["cloud_type"])
     with_cover = remap(shaped, 1.0 - cover, 1.0, 0.0, 1.0) * cover
     detail = detail_noise(skewed, p["detail_scale"], p["seed"], p["curl"], h)
-    modifier = (1.0 - detail) + np.clip(10.0 * h, 0.0, 1.0) * (2.0 * detail - 1.0)
-    eroded = remap(with_cover, modifier * p["erosion"], 1.0, 0.0, 1.0)
-    return eroded * p["density"] * (1.0 + PRECIPITATION_GAIN * p["precipitation"])
+    above_base = np.clip(BASE_CALM * h, 0.0, 1.0)
+    modifier = (1.0 - detail) + above_base * (2.0 * detail - 1.0)
+    eroded = remap(with_cover, modifier * p["erosion"] * above_base, 1.0, 0.0, 1.0, clamp=False)
+    window = region_window(points[..., :2], p.get("region"))
+    crisp = np.clip(EDGE_GAIN * eroded * window, -1.0, 1.0)
+    return crisp * (1.0 + PRECIPITATION_GAIN * p["precipitation"])
 
 
 # ---------------------------------------------------------------- phase
@@ -206,104 +267,42 @@ def sphere_integral(phase, n=2000):
 # ---------------------------------------------------------------- geometry
 
 
-def frame_rays(camera, samples=17):
-    """Origins and directions (world) of rays through the border of a camera's frame, and last
-    the ray through its middle (a camera looking straight up sees the slab only there).
-
-    camera: dict with "matrix" (4x4 world matrix, camera looks down its -Z), "ortho" (bool),
-    and "corners": the four frame corners in camera space at z = -1 (perspective)
-    or the frame half sizes (ortho: x and y of the corners, z ignored).
-    """
-    matrix = np.asarray(camera["matrix"], np.float64)
-    corners = np.asarray(camera["corners"], np.float64)
-    border = []
-    for i in range(4):
-        a, b = corners[i], corners[(i + 1) % 4]
-        for t in np.linspace(0.0, 1.0, samples, endpoint=False):
-            border.append(a + t * (b - a))
-    border = np.array(border)
-    rotation, location = matrix[:3, :3], matrix[:3, 3]
-    if camera["ortho"]:
-        flat = np.column_stack([border[:, 0], border[:, 1], np.zeros(len(border))])
-        origins = flat @ rotation.T + location
-        direction = rotation @ np.array([0.0, 0.0, -1.0])
-        directions = np.broadcast_to(direction / np.linalg.norm(direction), origins.shape)
-    else:
-        origins = np.broadcast_to(location, border.shape)
-        directions = border @ rotation.T
-        directions = directions / np.linalg.norm(directions, axis=1, keepdims=True)
-    middle = directions.mean(axis=0)
-    origins = np.vstack([origins, origins.mean(axis=0)])
-    directions = np.vstack([directions, middle / np.linalg.norm(middle)])
-    return origins, directions
+FADE_SHARE = 0.05  # the fade at the layer's sides: this share of Reach, at least a shape's size
 
 
-def _slab_points(origins, directions, low, high, reach, centre):
-    """Points where rays enter and leave the slab low <= z <= high, clipped to the square of
-    half side reach around centre (xy); rays that miss add nothing."""
-    points = []
-    for origin, direction in zip(origins, directions, strict=True):
-        dz = direction[2]
-        if abs(dz) < 1e-12:
-            if not low <= origin[2] <= high:
-                continue
-            spans = [0.0, math.inf]
-        else:
-            t0, t1 = sorted(((low - origin[2]) / dz, (high - origin[2]) / dz))
-            spans = [max(t0, 0.0), t1]
-            if spans[1] < spans[0]:
-                continue
-        # Clip the segment to the square |x - cx|, |y - cy| <= reach.
-        start, end = spans
-        for axis in (0, 1):
-            d = direction[axis]
-            lo, hi = centre[axis] - reach - origin[axis], centre[axis] + reach - origin[axis]
-            if abs(d) < 1e-12:
-                if not lo <= 0 <= hi:
-                    start, end = 1.0, 0.0
-                continue
-            a, b = sorted((lo / d, hi / d))
-            start, end = max(start, a), min(end, b)
-        end = min(end, start + 4.0 * reach)  # a vertical ray in a horizontal slab
-        if end < start:
-            continue
-        points.append(origin + start * direction)
-        points.append(origin + end * direction)
-    return np.array(points).reshape(-1, 3)
+def fade_width(shape_scale, reach):
+    """How far inside its box's sides the layer fades out."""
+    return max(shape_scale, FADE_SHARE * reach)
 
 
-def layer_bounds(cameras, base, top, reach, ground=0.0, sun_direction=None):
-    """Horizontal box (xmin, ymin, xmax, ymax) of the layer the cameras need: what they see of
-    the slab base..top, and (with a sun direction, pointing at the sun) the part of the slab
-    that shades the ground they see. Everything within reach of the cameras (a square).
-    None when the cameras need none of it.
-    """
-    points = []
-    for camera in cameras:
-        origins, directions = frame_rays(camera)
-        centre = np.asarray(camera["matrix"], np.float64)[:2, 3]
-        points.append(_slab_points(origins, directions, base, top, reach, centre))
-        if sun_direction is not None and sun_direction[2] > 1e-6:
-            floor = ground - 1e-3 * reach  # a thin slab at the ground: where rays meet it
-            seen = _slab_points(origins, directions, floor, ground, reach, centre)
-            if len(seen):
-                sun = np.asarray(sun_direction, np.float64) / np.linalg.norm(sun_direction)
-                flat = seen.copy()
-                flat[:, 2] = ground
-                for height in (base, top):
-                    lifted = flat + sun * ((height - ground) / sun[2])
-                    lifted[:, :2] = np.clip(lifted[:, :2], centre - reach, centre + reach)
-                    points.append(lifted)
-    points = np.vstack([p for p in points if len(p)]) if any(len(p) for p in points) else np.zeros((0, 3))
-    if not len(points):
-        return None
-    return (*points[:, :2].min(axis=0), *points[:, :2].max(axis=0))
+def layer_region(cameras_xy, seen_xy, reach, fade):
+    """Box (xmin, ymin, xmax, ymax) holding the cameras out to reach in every direction and the
+    points they see (an orthographic frame is wider than its camera), padded by the fade."""
+    cameras = np.asarray(cameras_xy, np.float64).reshape(-1, 2)
+    points = np.vstack([cameras - reach, cameras + reach, np.asarray(seen_xy, np.float64).reshape(-1, 2)])
+    return (*(points.min(axis=0) - fade), *(points.max(axis=0) + fade))
+
+
+def carried_region(region, wind, start, end):
+    """The region in frame-0 space over times start..end: every region - wind x t."""
+    xmin, ymin, xmax, ymax = region
+    shifts = np.array([drift(wind, start)[:2], drift(wind, end)[:2]])
+    return (xmin - shifts[:, 0].max(), ymin - shifts[:, 1].max(), xmax - shifts[:, 0].min(),
+            ymax - shifts[:, 1].min())
+
+
+def box_mesh(region, low, high):
+    """Vertices and quads of the closed box over region from z = low to high."""
+    xmin, ymin, xmax, ymax = region
+    verts = np.array([(x, y, z) for z in (low, high) for y in (ymin, ymax) for x in (xmin, xmax)], np.float64)
+    faces = [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (1, 3, 7, 5), (3, 2, 6, 7), (2, 0, 4, 6)]
+    return verts, faces
 
 
 def covered_cells(bounds, cells, coverage_at, spread=0.0, oversample=4):
     """Which cells of a grid over bounds (cells x cells) can hold cloud: coverage_at(xy) > 0 at
-    any of oversample^2 points in the cell, dilated by spread (world units, the drift over the
-    shot) plus one cell for what falls between samples. Returns a bool array (rows = y)."""
+    any of oversample^2 points in the cell, dilated by spread (world units) plus one cell for
+    what falls between samples. Returns a bool array (rows = y)."""
     xmin, ymin, xmax, ymax = bounds
     nx = ny = cells
     step = np.array([(xmax - xmin) / nx, (ymax - ymin) / ny])
@@ -323,37 +322,32 @@ def covered_cells(bounds, cells, coverage_at, spread=0.0, oversample=4):
     return grown
 
 
-def column_mesh(bounds, mask, low, high):
-    """Vertices and quads of one closed surface around the columns of the cells in mask
-    (rows = y), from z = low to high: tops, bottoms and only the walls between a kept cell and
-    a dropped one, sharing vertices so the volume is watertight."""
-    ny, nx = mask.shape
-    xmin, ymin, xmax, ymax = bounds
-    xs = np.linspace(xmin, xmax, nx + 1)
-    ys = np.linspace(ymin, ymax, ny + 1)
-    index = {}
-    verts = []
+# ---------------------------------------------------------------- views of the twin
 
-    def vertex(i, j, level):
-        key = (i, j, level)
-        if key not in index:
-            index[key] = len(verts)
-            verts.append((xs[i], ys[j], (low, high)[level]))
-        return index[key]
 
-    faces = []
-    kept = np.pad(mask, 1)
-    for j, i in zip(*np.nonzero(mask), strict=True):
-        faces.append((vertex(i, j, 1), vertex(i + 1, j, 1), vertex(i + 1, j + 1, 1), vertex(i, j + 1, 1)))
-        faces.append((vertex(i, j, 0), vertex(i, j + 1, 0), vertex(i + 1, j + 1, 0), vertex(i + 1, j, 0)))
-        if not kept[j + 1, i]:  # west
-            faces.append((vertex(i, j, 0), vertex(i, j, 1), vertex(i, j + 1, 1), vertex(i, j + 1, 0)))
-        if not kept[j + 1, i + 2]:  # east
-            faces.append((vertex(i + 1, j, 0), vertex(i + 1, j + 1, 0), vertex(i + 1, j + 1, 1),
-                          vertex(i + 1, j, 1)))
-        if not kept[j, i + 1]:  # south
-            faces.append((vertex(i, j, 0), vertex(i + 1, j, 0), vertex(i + 1, j, 1), vertex(i, j, 1)))
-        if not kept[j + 2, i + 1]:  # north
-            faces.append((vertex(i, j + 1, 0), vertex(i, j + 1, 1), vertex(i + 1, j + 1, 1),
-                          vertex(i + 1, j + 1, 0)))
-    return np.array(verts, np.float64).reshape(-1, 3), faces
+def optical_depth_up(p, centre, size, pixels, heights=24):
+    """Optical depth straight up through the layer over a square (side size, pixels x pixels,
+    rows = y) centred at centre (x, y): the density summed over `heights` midpoints."""
+    offsets = (np.arange(pixels) + 0.5) / pixels * size - size / 2
+    xs, ys = np.meshgrid(centre[0] + offsets, centre[1] + offsets)
+    step = p["thickness"] / heights
+    tau = np.zeros_like(xs)
+    for k in range(heights):
+        z = np.full_like(xs, p["base"] + (k + 0.5) * step)
+        tau += density(np.stack([xs, ys, z], axis=-1), p) * step
+    return tau
+
+
+def optical_depth_side(p, centre, width, depth, pixels, samples=24):
+    """Optical depth seen from the side, looking along +y through a slab `depth` deep: an image
+    width wide (pixels across, rows = z over the layer's thickness, square pixels)."""
+    rows = max(1, int(round(pixels * p["thickness"] / width)))
+    xs = centre[0] + (np.arange(pixels) + 0.5) / pixels * width - width / 2
+    zs = p["base"] + (np.arange(rows) + 0.5) / rows * p["thickness"]
+    gx, gz = np.meshgrid(xs, zs)
+    step = depth / samples
+    tau = np.zeros_like(gx)
+    for k in range(samples):
+        y = np.full_like(gx, centre[1] - depth / 2 + (k + 0.5) * step)
+        tau += density(np.stack([gx, y, gz], axis=-1), p) * step
+    return tau

@@ -167,3 +167,69 @@ def composite_group(group, values, output, resolution):
     finally:
         scene.compositing_node_group = kept
         bpy.data.node_groups.remove(tree)
+
+
+def _probe_tree(name):
+    tree = bpy.data.node_groups.new(name, "GeometryNodeTree")
+    tree.interface.new_socket("Geometry", in_out="INPUT", socket_type="NodeSocketGeometry")
+    tree.interface.new_socket("Geometry", in_out="OUTPUT", socket_type="NodeSocketGeometry")
+    return tree
+
+
+def _read_on_points(tree, value, points):
+    """Store `value` (a field socket of tree) on a mesh of points (n, 3) and read it back."""
+    nodes, links = tree.nodes, tree.links
+    group_in, group_out = nodes.new("NodeGroupInput"), nodes.new("NodeGroupOutput")
+    store = nodes.new("GeometryNodeStoreNamedAttribute")
+    store.inputs["Name"].default_value = "sampled"
+    links.new(group_in.outputs[0], store.inputs["Geometry"])
+    links.new(value, store.inputs["Value"])
+    links.new(store.outputs[0], group_out.inputs[0])
+    mesh = bpy.data.meshes.new("Probe Points")
+    mesh.from_pydata([tuple(p) for p in np.asarray(points, float)], [], [])
+    probe = bpy.data.objects.new("Probe Points", mesh)
+    bpy.context.scene.collection.objects.link(probe)
+    probe.modifiers.new("Probe", "NODES").node_group = tree
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    depsgraph.update()
+    evaluated = probe.evaluated_get(depsgraph).data
+    values = np.empty(len(evaluated.vertices), np.float32)
+    evaluated.attributes["sampled"].data.foreach_get("value", values)
+    bpy.data.objects.remove(probe)
+    bpy.data.meshes.remove(mesh)
+    bpy.data.node_groups.remove(tree)
+    return values.astype(np.float64)
+
+
+def grid_values(volume_object, points, grid="density"):
+    """A volume object's grid (as geometry nodes make it, in the object's own space) sampled at
+    points (n, 3), trilinear."""
+    tree = _probe_tree("Grid Probe")
+    nodes, links = tree.nodes, tree.links
+    info = nodes.new("GeometryNodeObjectInfo")
+    info.transform_space = "ORIGINAL"
+    info.inputs["Object"].default_value = volume_object
+    named = nodes.new("GeometryNodeGetNamedGrid")
+    named.inputs["Name"].default_value = grid
+    links.new(info.outputs["Geometry"], named.inputs["Volume"])
+    sample = nodes.new("GeometryNodeSampleGrid")
+    links.new(named.outputs["Grid"], sample.inputs["Grid"])
+    links.new(nodes.new("GeometryNodeInputPosition").outputs[0], sample.inputs["Position"])
+    return _read_on_points(tree, sample.outputs[0], points)
+
+
+def field_values(chain, points, output):
+    """Blender's own evaluation of a chain of geometry-node groups at points (n, 3): chain is a
+    list of (group, inputs, links into the next group by output name); the last group's output
+    named `output` is read."""
+    tree = _probe_tree("Field Probe")
+    previous, links_on = None, ()
+    for group, inputs, links_next in chain:
+        node = tree.nodes.new("GeometryNodeGroup")
+        node.node_tree = group
+        for name, value in inputs.items():
+            node.inputs[name].default_value = value
+        for name in links_on:
+            tree.links.new(previous.outputs[name], node.inputs[name])
+        previous, links_on = node, links_next
+    return _read_on_points(tree, previous.outputs[output], points)

@@ -41,6 +41,8 @@ GROUPS = (
     (dust_field, "Atmosphere"),
     (cloud_density, "Clouds"),
     (weather_map, "Clouds"),
+    (cloud_density.GEOMETRY, "Clouds"),
+    (weather_map.GEOMETRY, "Clouds"),
     (gated_blur, "Post Effects"),
     (GOD_RAYS, "Post Effects"),
     (region_cut, None),

@@ -3,9 +3,11 @@
 Height fraction h in the layer; the cloud type's height gradient (smoothstep(a, b, h) -
 smoothstep(c, d, h), the four numbers blended from stratus to cumulus to cumulonimbus); a
 Perlin-Worley shape noise times the gradient, remapped by the weather map's coverage; edges
-eroded by a Worley fBm on a curl-like distorted position, wispy at the base and billowy at the
-top; precipitation makes it denser. Every noise drifts with the wind, and the shape leans
-downwind by Skew at the top. Twin: core.clouds.density.
+eroded by a Worley fBm on a curl-like distorted position, wispy low and billowy at the top but
+not at the base itself (flat bases), then sharpened so edges are crisp; precipitation makes it
+denser; it fades out at the sides of the Region box. Every noise drifts with the wind, and the
+shape leans downwind by Skew at the top. The same group builds in geometry nodes (GEOMETRY), where
+the cloud grid evaluates it once per voxel. Twin: core.clouds.density.
 """
 
 from ..core import clouds
@@ -13,7 +15,7 @@ from . import helper as h
 from .weather_map import DRIFT_INPUTS, PLAIN_NOISE, drifted_position, seeded
 
 NAME = "Sandscape Cloud Density"
-VERSION = 2
+VERSION = 3
 TREE_TYPE = "ShaderNodeTree"
 DESCRIPTION = "Density of a cloud layer from a weather map: height gradient by type, shape, erosion, wind"
 INPUTS = {
@@ -33,19 +35,30 @@ INPUTS = {
     "Curl": ("NodeSocketFloat", "Distortion of the detail, in detail cells at the top of the layer", 0.5,
              0.0, None, None),
     "Skew": ("NodeSocketFloat", "How far the tops lean downwind", 300.0, None, None, "DISTANCE"),
+    "Region Min": ("NodeSocketVector", "Corner of the box the layer fills (x and y)", (-1e9, -1e9, 0.0),
+                   None, None, "TRANSLATION"),
+    "Region Max": ("NodeSocketVector", "Opposite corner of the box (x and y)", (1e9, 1e9, 0.0), None, None,
+                   "TRANSLATION"),
+    "Region Fade": ("NodeSocketFloat", "The density falls to zero over this distance inside the box's sides",
+                    1.0, 1e-6, None, "DISTANCE"),
     **DRIFT_INPUTS,
 }
 OUTPUTS = {
     "Density": ("NodeSocketFloat", "Extinction per unit length: the Density of a Volume Scatter"),
     "Height Fraction": ("NodeSocketFloat", "0 at the layer's bottom, 1 at its top"),
+    "Cloudiness": ("NodeSocketFloat", "Density over its peak where positive, how far from cloud (down to −1) "
+                   "where not: smooth across edges, what the cloud grid stores"),
 }
 
 
 def _smoothstep(tree, a, b, value, label):
     node = h.add_node(tree, "ShaderNodeMapRange", label=label, interpolation_type="SMOOTHSTEP")
     h.link(tree, value, node.inputs["Value"])
-    h.link(tree, a, node.inputs["From Min"])
-    h.link(tree, b, node.inputs["From Max"])
+    for end, name in ((a, "From Min"), (b, "From Max")):
+        if isinstance(end, float):
+            node.inputs[name].default_value = end
+        else:
+            h.link(tree, end, node.inputs[name])
     return node
 
 
@@ -89,6 +102,46 @@ def _gradient(tree, cloud_type, height):
     return profile.outputs[0], nodes + [rise, fall, profile]
 
 
+def _region_window(tree, split, inputs):
+    """smoothstep(0, fade, x - xmin) smoothstep(0, fade, xmax - x), the same in y (core.clouds.
+    region_window). Returns (the window socket, the nodes made)."""
+    low = h.add_node(tree, "ShaderNodeSeparateXYZ", label="Region Min")
+    high = h.add_node(tree, "ShaderNodeSeparateXYZ", label="Region Max")
+    h.link(tree, inputs["Region Min"], low.inputs[0])
+    h.link(tree, inputs["Region Max"], high.inputs[0])
+    nodes, window = [low, high], None
+    for axis in ("X", "Y"):
+        inside = h.math(tree, "SUBTRACT", split.outputs[axis], low.outputs[axis], label=f"{axis} − Min")
+        before = h.math(tree, "SUBTRACT", high.outputs[axis], split.outputs[axis], label=f"Max − {axis}")
+        nodes += [inside, before]
+        for distance in (inside, before):
+            ramp = _smoothstep(tree, 0.0, inputs["Region Fade"], distance.outputs[0], f"Fade at {axis}")
+            nodes.append(ramp)
+            if window is None:
+                window = ramp.outputs["Result"]
+            else:
+                product = h.math(tree, "MULTIPLY", window, ramp.outputs["Result"], label="Window")
+                nodes.append(product)
+                window = product.outputs[0]
+    return window, nodes
+
+
+class GeometryBuilder:
+    """This group built for geometry nodes, shaped like a builder module for ensure_group."""
+
+    VERSION = VERSION
+    TREE_TYPE = "GeometryNodeTree"
+    NAME = f"{NAME} Field"
+    DESCRIPTION = DESCRIPTION
+
+    @staticmethod
+    def build(tree):
+        build(tree)
+
+
+GEOMETRY = GeometryBuilder()
+
+
 def build(tree):
     tree.description = DESCRIPTION
     h.add_sockets(tree, INPUTS, INPUTS, OUTPUTS)
@@ -96,7 +149,7 @@ def build(tree):
     inputs = group_in.outputs
     drifted, drift_nodes = drifted_position(tree, inputs)
 
-    position = h.add_node(tree, "ShaderNodeNewGeometry")
+    position = h.position(tree)
     split = h.add_node(tree, "ShaderNodeSeparateXYZ")
     h.link(tree, position.outputs["Position"], split.inputs[0])
     above = h.math(tree, "SUBTRACT", split.outputs["Z"], inputs["Base"], label="z − Base")
@@ -117,7 +170,8 @@ def build(tree):
     shape_space, shape_space_nodes = seeded(tree, skewed.outputs[0], inputs["Shape Scale"], inputs["Seed"],
                                             label="Shape")
     perlin = h.add_node(tree, "ShaderNodeTexNoise", label="Perlin fBm", noise_dimensions="3D",
-                        inputs={**PLAIN_NOISE, "Detail": clouds.SHAPE_DETAIL})
+                        inputs={**PLAIN_NOISE, "Detail": clouds.SHAPE_DETAIL,
+                                "Roughness": clouds.SHAPE_ROUGHNESS})
     h.link(tree, shape_space, perlin.inputs["Vector"])
     worley = h.add_node(tree, "ShaderNodeTexVoronoi", label="Worley", voronoi_dimensions="3D",
                         feature="F1", distance="EUCLIDEAN", inputs={"Scale": 2.0, "Detail": 0.0,
@@ -169,22 +223,33 @@ def build(tree):
             total = h.math(tree, "ADD", detail, term.outputs[0], label="Worley fBm")
             detail_nodes.append(total)
             detail = total.outputs[0]
-    # Wispy at the base (1 - detail), billowy at the top (detail): mix by sat(10 h).
-    top_share = h.math(tree, "MULTIPLY", height, 10.0, label="sat(10 h)")
+    # Wispy low (1 - detail), billowy at the top (detail): mix by sat(10 h), which also lets the
+    # erosion in from none at the base.
+    top_share = h.math(tree, "MULTIPLY", height, clouds.BASE_CALM, label="sat(10 h)")
     top_share.use_clamp = True
     inverted = h.math(tree, "SUBTRACT", 1.0, detail, label="1 − Detail")
     modifier = h.add_node(tree, "ShaderNodeMix", label="Wispy → Billowy", data_type="FLOAT")
     h.link(tree, top_share.outputs[0], h.socket(modifier.inputs, "Factor"))
     h.link(tree, inverted.outputs[0], h.socket(modifier.inputs, "A"))
     h.link(tree, detail, h.socket(modifier.inputs, "B"))
-    erosion_low = h.math(tree, "MULTIPLY", h.socket(modifier.outputs, "Result"), inputs["Erosion"],
-                         label="Modifier × Erosion")
+    eroding = h.math(tree, "MULTIPLY", h.socket(modifier.outputs, "Result"), inputs["Erosion"],
+                     label="Modifier × Erosion")
+    erosion_low = h.math(tree, "MULTIPLY", eroding.outputs[0], top_share.outputs[0], label="None at the Base")
     eroded = _remap(tree, with_cover.outputs[0], erosion_low.outputs[0], "Erode Edges")
+    eroded.clamp = False  # signed: how far from cloud, so a grid of it interpolates smoothly
+    window, window_nodes = _region_window(tree, split, inputs)
+    faded = h.math(tree, "MULTIPLY", eroded.outputs["Result"], window, label="Within the Region")
+    crisp = h.add_node(tree, "ShaderNodeClamp", label="Crisp Edges: Gain, −1..1",
+                       inputs={"Min": -1.0, "Max": 1.0})
+    gained = h.math(tree, "MULTIPLY", faded.outputs[0], clouds.EDGE_GAIN, label="× Edge Gain")
+    h.link(tree, gained.outputs[0], crisp.inputs["Value"])
     wet = h.math(tree, "MULTIPLY_ADD", inputs["Precipitation"], clouds.PRECIPITATION_GAIN,
                  label="1 + Gain × Precipitation")
     wet.inputs[2].default_value = 1.0
-    scale = h.math(tree, "MULTIPLY", inputs["Density"], wet.outputs[0], label="Density × Wet")
-    result = h.math(tree, "MULTIPLY", eroded.outputs["Result"], scale.outputs[0], label="Density")
+    cloudiness = h.math(tree, "MULTIPLY", crisp.outputs[0], wet.outputs[0], label="Cloudiness")
+    h.link(tree, cloudiness.outputs[0], group_out.inputs["Cloudiness"])
+    positive = h.math(tree, "MAXIMUM", cloudiness.outputs[0], 0.0, label="Where Cloud")
+    result = h.math(tree, "MULTIPLY", positive.outputs[0], inputs["Density"], label="Density")
     h.link(tree, result.outputs[0], group_out.inputs["Density"])
 
     h.frame(tree, "Carried by the Wind", drift_nodes)
@@ -194,6 +259,7 @@ def build(tree):
     h.frame(tree, "Shape", (*shape_space_nodes, perlin, worley, dilate_low, perlin_worley, shaped, uncovered,
                             covered, with_cover))
     h.frame(tree, "Eroded Edges", (*detail_space_nodes, *detail_nodes, top_share, inverted, modifier,
-                                   erosion_low, eroded))
-    h.frame(tree, "Density", (wet, scale, result))
+                                   eroding, erosion_low, eroded))
+    h.frame(tree, "Fades Out in Its Box", (*window_nodes, faded))
+    h.frame(tree, "Density", (gained, crisp, wet, cloudiness, positive, result))
     h.arrange(tree)

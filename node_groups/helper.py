@@ -142,6 +142,14 @@ def add_sockets(tree, input_names, inputs, outputs):
         add_output(tree, name, socket_type, description)
 
 
+def position(tree):
+    """A node whose Position output is the point being shaded (shader trees) or evaluated
+    (geometry nodes): one builder serves both."""
+    if tree.bl_idname == "GeometryNodeTree":
+        return add_node(tree, "GeometryNodeInputPosition")
+    return add_node(tree, "ShaderNodeNewGeometry")
+
+
 def normal_or_geometry(tree, normal):
     """The Normal input if it was linked (not zero), else the shading normal: a group's unlinked
     vector input is (0, 0, 0), and a zero normal would make the shaders meaningless.

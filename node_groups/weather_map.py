@@ -1,11 +1,12 @@
 """Sandscape Weather Map: where clouds are, how wet and of which type, over the ground.
 
-Coverage: a 2D fBm noise over the ground (drifting with the wind), 0 below an edge and 1 a
-little above it; the edge comes from the Coverage input by a fit to the noise's own quantiles,
-so that Coverage is the share of the sky under cloud. Precipitation is passed on;
-Type is the given type, or with Mixed Types a slower noise over the ground. The channels are
-those of a painted weather map (red coverage, green precipitation, blue type), so an image can
-replace this group. Twin: core.clouds (weather_noise, map_coverage, mixed_type).
+Coverage: a 2D fBm noise over the ground (drifting with the wind, looked up at a warped
+position so outlines are ragged), 0 below an edge rising to 1 above it; the edge comes from the
+Coverage input by a fit to the noise's own quantiles, so that Coverage is the share of the sky
+under cloud. Precipitation is passed on; Type is the given type, or with Mixed Types a slower
+noise over the ground. The channels are those of a painted weather map (red coverage, green
+precipitation, blue type), so an image can replace this group. It builds in geometry nodes too
+(GEOMETRY), for the cloud grid. Twin: core.clouds (weather_noise, map_coverage, mixed_type).
 """
 
 import math
@@ -14,7 +15,7 @@ from ..core import clouds
 from . import helper as h
 
 NAME = "Sandscape Weather Map"
-VERSION = 2
+VERSION = 3
 TREE_TYPE = "ShaderNodeTree"
 DESCRIPTION = "Procedural weather map for the cloud layer: coverage, precipitation and cloud type"
 # Inputs every cloud group shares: its pattern's seed, and where the wind has carried it by now.
@@ -49,7 +50,7 @@ OUTPUTS = {
 def drifted_position(tree, inputs):
     """World position minus wind x time: where the air now here was at frame 0. Returns
     (socket, nodes)."""
-    position = h.add_node(tree, "ShaderNodeNewGeometry")
+    position = h.position(tree)
     time = h.math(tree, "DIVIDE", inputs["Frame"], inputs["FPS"], label="Time (s)")
     carried = h.vector_math(tree, "SCALE", inputs["Wind"], label="Wind × Time")
     h.link(tree, time.outputs[0], carried.inputs["Scale"])
@@ -72,6 +73,42 @@ def seeded(tree, point, scale, seed, extra=0.0, label="Noise Space"):
     return nodes[-1].outputs[0], nodes
 
 
+def _warp(tree, map_space):
+    """map_space + WARP x (fBm - 0.5 in x, in y) (core.clouds.weather_noise). Returns (socket, nodes)."""
+    shift = h.add_node(tree, "ShaderNodeCombineXYZ", label="Warp")
+    nodes = [shift]
+    for axis, offset in zip(("X", "Y"), clouds.WARP_OFFSETS, strict=True):
+        moved = h.vector_math(tree, "MULTIPLY_ADD", map_space, (clouds.WARP_FREQUENCY,) * 3,
+                              label=f"Warp Space {axis}")
+        moved.inputs[2].default_value = (offset,) * 3
+        warp = h.add_node(tree, "ShaderNodeTexNoise", label=f"Warp {axis}", noise_dimensions="2D",
+                          inputs={**PLAIN_NOISE, "Detail": clouds.WARP_DETAIL,
+                                  "Roughness": clouds.WARP_ROUGHNESS})
+        h.link(tree, moved.outputs[0], warp.inputs["Vector"])
+        centred = h.math(tree, "SUBTRACT", warp.outputs["Fac"], 0.5, label=f"{axis} − 0.5")
+        h.link(tree, centred.outputs[0], shift.inputs[axis])
+        nodes += [moved, warp, centred]
+    scaled = h.vector_math(tree, "MULTIPLY_ADD", shift.outputs[0], (clouds.WARP,) * 3, label="Warped Map")
+    h.link(tree, map_space, scaled.inputs[2])
+    return scaled.outputs[0], nodes + [scaled]
+
+
+class GeometryBuilder:
+    """This group built for geometry nodes, shaped like a builder module for ensure_group."""
+
+    VERSION = VERSION
+    TREE_TYPE = "GeometryNodeTree"
+    NAME = f"{NAME} Field"
+    DESCRIPTION = DESCRIPTION
+
+    @staticmethod
+    def build(tree):
+        build(tree)
+
+
+GEOMETRY = GeometryBuilder()
+
+
 def build(tree):
     tree.description = DESCRIPTION
     h.add_sockets(tree, INPUTS, INPUTS, OUTPUTS)
@@ -80,9 +117,10 @@ def build(tree):
     drifted, drift_nodes = drifted_position(tree, inputs)
 
     map_space, map_nodes = seeded(tree, drifted, inputs["Map Scale"], inputs["Seed"], label="Map")
+    warped, warp_nodes = _warp(tree, map_space)
     weather = h.add_node(tree, "ShaderNodeTexNoise", label="Weather Noise", noise_dimensions="2D",
                          inputs={**PLAIN_NOISE, "Detail": clouds.MAP_DETAIL})
-    h.link(tree, map_space, weather.inputs["Vector"])
+    h.link(tree, warped, weather.inputs["Vector"])
     # edge = c0 + c1 L + c3 L^3 - shift, L = ln((1 - c) / c), c kept where the fit is monotone;
     # +-10 at coverage 0 and 1 (core.clouds.coverage_edge, map_coverage).
     kept = h.add_node(tree, "ShaderNodeClamp", label="Coverage in Fit Range",
@@ -124,6 +162,7 @@ def build(tree):
     h.link(tree, h.socket(chosen.outputs, "Result"), group_out.inputs["Type"])
 
     h.frame(tree, "Carried by the Wind", drift_nodes)
+    h.frame(tree, "Ragged Outlines", warp_nodes)
     h.frame(tree, "Coverage", (*map_nodes, weather, kept, clear, odds, log_odds, cube, cubic, linear, fitted,
                                  none, full, extremes, edge, edge_top, cover))
     h.frame(tree, "Cloud Type", (type_scale, *type_nodes, type_noise, stretched, chosen))

@@ -2,7 +2,7 @@
 
 import bpy
 
-from ..blender import clouds, ownership
+from ..blender import clouds, ownership, units
 from ..ui.properties import CLOUD_LIMITS, cloud_fields
 from .base import SandscapeOperator, SceneSettings, editable_problem, has_camera, value_problem
 
@@ -53,15 +53,24 @@ class SANDSCAPE_OT_add_clouds(SceneSettings, SandscapeOperator, bpy.types.Operat
         values, problem = self.checked_settings(context)
         if problem:
             return self.fail(problem)
-        self.remember(scene.sandscape_clouds, values)
         image = bpy.data.images[values["weather_image"]] if values["weather_source"] == "IMAGE" else None
-        done = clouds.apply(scene, values, image)
+        plan = clouds.plan(scene, values, image)
+        self.remember(scene.sandscape_clouds, values)
+        done = clouds.apply(scene, values, image, plan)
         if done["layer"] is None:
-            self.report({"INFO"}, "No cloud where the camera looks (coverage 0, or the layer is out of "
-                        "view): no cloud layer")
+            self.report({"INFO"}, "No cloud where the camera looks (coverage 0, or the weather map is clear "
+                        "over the shot): no cloud layer")
             return {"FINISHED"}
-        self.report({"INFO"}, f"Cloud layer '{done['layer'].name}': {done['cells']} of {done['of']} columns "
-                    f"hold cloud, {values['cloud_type'].lower()}, coverage {values['coverage']:.2f}")
+        if values["evaluation"] == "GRID":
+            how = f"a grid of {done['voxels']:,} voxels (at most {done['voxels'] * 4 / 2**20:.0f} MiB)"
+        else:
+            how = "procedural"
+        width = units.length_text(scene, done["region"][2] - done["region"][0])
+        depth = units.length_text(scene, done["region"][3] - done["region"][1])
+        self.report({"INFO"}, f"Cloud layer '{done['layer'].name}': {values['cloud_type'].lower()}, coverage "
+                    f"{values['coverage']:.2f}, {width} × {depth} of sky, {how}")
+        if done["warning"]:
+            self.report({"WARNING"}, done["warning"])
         return {"FINISHED"}
 
 

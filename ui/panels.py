@@ -148,7 +148,8 @@ class SANDSCAPE_PT_atmosphere(SandscapeSubPanel, bpy.types.Panel):
 CLOUD_SECTIONS = (
     ("Layer", ("coverage", "cloud_type", "seed", "base", "thickness", "precipitation", "density")),
     ("Shape", ("shape_scale", "detail_scale", "erosion", "curl", "skew")),
-    ("Light", ("phase", "forward", "back", "back_weight", "droplet_size", "step", "reach")),
+    ("Light", ("phase", "forward", "back", "back_weight", "droplet_size", "reach")),
+    ("Evaluation", ("evaluation", "voxel", "step")),
 )
 
 

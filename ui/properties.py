@@ -218,8 +218,16 @@ def cloud_fields(for_operator):
         "droplet_size": FloatProperty(name="Droplet Size", default=20.0, soft_min=5.0, soft_max=50.0,
                                       description="Water droplet diameter in micrometres, for the Mie phase",
                                       **skip),
-        "step": distance("step_m", "Step", 200.0, "Ray-marching step through the clouds: smaller is "
-                         "slower and more exact", 1000.0, 1.0),
+        "step": distance("step_m", "Step", 200.0, "Ray-marching step through procedural clouds: smaller "
+                         "is slower and more exact", 1000.0, 1.0),
+        "evaluation": EnumProperty(
+            name="Evaluation", default="GRID",
+            items=(("GRID", "Voxel Grid", "Evaluate the density once into a voxel grid (geometry nodes): "
+                    "renders look voxels up, fast"),
+                   ("PROCEDURAL", "Procedural", "Evaluate every noise at every step of every ray: finest "
+                    "detail, slowest")), **skip),
+        "voxel": distance("voxel_m", "Voxel Size", 100.0, "Edge of one voxel of the cloud grid: smaller "
+                          "holds finer detail and costs the cube of it", 500.0, 10.0),
     }
     if for_operator:
         fields["weather_image"] = StringProperty(name="Weather Image", description="Image for the Image "
@@ -236,6 +244,7 @@ CLOUD_LIMITS = {
     "detail_scale": (1e-2, 1e6), "erosion": (0.0, 0.99), "curl": (0.0, 10.0), "skew": (-1e5, 1e5),
     "reach": (1.0, 1e6), "map_size": (1.0, 1e7), "forward": (-0.99, 0.99), "back": (-0.99, 0.99),
     "back_weight": (0.0, 1.0), "droplet_size": (0.01, 50.0), "step": (1e-3, 1e5),
+    "voxel": (1e-3, 1e5),
 }
 
 SandscapeCloudSettings = type("SandscapeCloudSettings", (bpy.types.PropertyGroup,),
