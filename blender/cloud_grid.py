@@ -15,12 +15,13 @@ import math
 
 import bpy
 
+from ..core import clouds
 from ..node_groups import cloud_density, weather_map
 from ..node_groups import helper as h
 from . import ownership as own
 
 MODIFIER = "Sandscape Cloud Grid"
-CLEAR = -1.0  # the cloudiness far from any cloud: the grid's background, so those voxels stay inactive
+CLEAR = -clouds.CLOUDINESS_RANGE  # cloudiness far from cloud: the background, so those voxels stay inactive
 MAX_VOXELS = 12_000_000  # about 20 s of geometry nodes on 2 cores, 46 MiB of floats at most
 
 

@@ -177,13 +177,17 @@ def _clear(tree):
 
 
 def grid_material(material, scene, s):
-    """The grid's cloudiness (interpolated by Cycles), its positive part x Density -> scattering
-    (core.clouds.density_from_cloudiness)."""
+    """The grid's cloudiness (interpolated by Cycles), clamped to 0..wet, x Density -> scattering
+    (core.clouds.density_from_cloudiness). A painted map's precipitation varies over the ground:
+    its clamp is the wettest cloud's."""
     tree = material.node_tree
     _clear(tree)
     grid = h.add_node(tree, "ShaderNodeAttribute", name="Sandscape Cloud Grid", label="Cloudiness Grid",
                       attribute_type="GEOMETRY", attribute_name="density")
-    positive = h.math(tree, "MAXIMUM", grid.outputs["Fac"], 0.0, label="Where Cloud")
+    precipitation = 1.0 if s["weather_source"] == "IMAGE" else s["precipitation"]
+    positive = h.add_node(tree, "ShaderNodeClamp", label="Where Cloud: 0..Wet",
+                          inputs={"Min": 0.0, "Max": float(twin.wet(precipitation))})
+    h.link(tree, grid.outputs["Fac"], positive.inputs["Value"])
     density = h.math(tree, "MULTIPLY", positive.outputs[0], parameters(scene, s)["density"], label="Density")
     density.name = "Sandscape Grid Density"
     output = h.add_node(tree, "ShaderNodeOutputMaterial", name="Sandscape Output")
@@ -291,6 +295,8 @@ def apply(scene, s, image=None, done=None):
                               weather, image, done["box"], done["voxel"])
         cloud_grid.drift_with_wind(layer, scene.sandscape_atmosphere.wind,
                                    scene.render.fps / scene.render.fps_base)
+        # Ray marching steps a grid by its voxel x the step rate: Step long, as procedurally.
+        material.cycles.volume_step_rate = float(min(max(s["step"] / done["voxel"], 1e-6), 1e6))
     else:
         cloud_grid.remove_modifier(layer)
         cloud_grid.stop_drift(layer)

@@ -59,6 +59,10 @@ OPAQUE_SHIFT = 0.177
 SHAPE_DETAIL = 4.0
 SHAPE_ROUGHNESS = 0.62  # 2^-H with H = 0.7: outlines of fractal dimension about 2 - H (Lovejoy's 1.35)
 EDGE_GAIN = 3.0  # the eroded density reaches full within a third of its range: crisp edges, not a fade
+# The signed cloudiness runs on linearly to +-CLOUDINESS_RANGE before it is clamped, so a voxel grid
+# of it interpolates across an edge as the field does (a clamp at +-1 would put every edge at a
+# voxel's middle: 0.026 less sky under cloud at 150 m voxels).
+CLOUDINESS_RANGE = 4.0
 BASE_CALM = 10.0  # erosion grows from none at the base over the lowest 1 / BASE_CALM: flat bases
 DETAIL_WEIGHTS = (0.625, 0.25, 0.125)  # Worley fBm: three octaves, each twice the frequency
 PRECIPITATION_GAIN = 2.0  # full precipitation triples the density
@@ -174,10 +178,10 @@ def detail_noise(points, detail_scale, seed, curl, h):
 
 
 def cloudiness(points, p):
-    """The layer's signed cloudiness at world points: the density over its peak where positive,
-    and how far from cloud (down to -1) where not. It varies smoothly across an edge, so a voxel
-    grid of it, interpolated and then clamped (density_from_cloudiness), keeps the edge where it
-    is; a grid of the clamped density would spread it over a voxel."""
+    """The layer's signed cloudiness at world points: the density over Density where positive
+    (capped by density_from_cloudiness), how far from cloud where not. It varies smoothly across
+    an edge, so a voxel grid of it, interpolated and then clamped, keeps the edge where it is; a
+    grid of the clamped density would spread it over a voxel."""
     points = np.asarray(points, np.float64)
     xy = (points - drift(p["wind"], p["time"]))[..., :2]
     cover = map_coverage(weather_noise(xy, p["map_scale"], p["seed"]), p["coverage"])
@@ -185,9 +189,14 @@ def cloudiness(points, p):
     return shaped_cloudiness(points, {**p, "cloud_type": cloud_type}, cover)
 
 
+def wet(precipitation):
+    """Precipitation makes clouds denser: full precipitation triples the density."""
+    return 1.0 + PRECIPITATION_GAIN * np.asarray(precipitation, np.float64)
+
+
 def density_from_cloudiness(value, p):
-    """Extinction per unit length from cloudiness: its positive part times the Density."""
-    return np.maximum(np.asarray(value, np.float64), 0.0) * p["density"]
+    """Extinction per unit length from cloudiness: clamped to 0..wet, times the Density."""
+    return np.clip(np.asarray(value, np.float64), 0.0, wet(p["precipitation"])) * p["density"]
 
 
 def density(points, p):
@@ -237,8 +246,8 @@ def shaped_cloudiness(points, p, cover):
     modifier = (1.0 - detail) + above_base * (2.0 * detail - 1.0)
     eroded = remap(with_cover, modifier * p["erosion"] * above_base, 1.0, 0.0, 1.0, clamp=False)
     window = region_window(points[..., :2], p.get("region"))
-    crisp = np.clip(EDGE_GAIN * eroded * window, -1.0, 1.0)
-    return crisp * (1.0 + PRECIPITATION_GAIN * p["precipitation"])
+    crisp = np.clip(EDGE_GAIN * eroded * window, -CLOUDINESS_RANGE, CLOUDINESS_RANGE)
+    return crisp * wet(p["precipitation"])
 
 
 # ---------------------------------------------------------------- phase

@@ -46,8 +46,8 @@ INPUTS = {
 OUTPUTS = {
     "Density": ("NodeSocketFloat", "Extinction per unit length: the Density of a Volume Scatter"),
     "Height Fraction": ("NodeSocketFloat", "0 at the layer's bottom, 1 at its top"),
-    "Cloudiness": ("NodeSocketFloat", "Density over its peak where positive, how far from cloud (down to −1) "
-                   "where not: smooth across edges, what the cloud grid stores"),
+    "Cloudiness": ("NodeSocketFloat", "Density over Density where positive (up to the wet factor), how far "
+                   "from cloud where not: smooth across edges, what the cloud grid stores"),
 }
 
 
@@ -126,20 +126,8 @@ def _region_window(tree, split, inputs):
     return window, nodes
 
 
-class GeometryBuilder:
-    """This group built for geometry nodes, shaped like a builder module for ensure_group."""
-
-    VERSION = VERSION
-    TREE_TYPE = "GeometryNodeTree"
-    NAME = f"{NAME} Field"
-    DESCRIPTION = DESCRIPTION
-
-    @staticmethod
-    def build(tree):
-        build(tree)
-
-
-GEOMETRY = GeometryBuilder()
+# This group built for geometry nodes (the cloud grid evaluates it per voxel).
+GEOMETRY = h.GeometryBuilder(NAME, VERSION, DESCRIPTION, lambda tree: build(tree))
 
 
 def build(tree):
@@ -239,8 +227,8 @@ def build(tree):
     eroded.clamp = False  # signed: how far from cloud, so a grid of it interpolates smoothly
     window, window_nodes = _region_window(tree, split, inputs)
     faded = h.math(tree, "MULTIPLY", eroded.outputs["Result"], window, label="Within the Region")
-    crisp = h.add_node(tree, "ShaderNodeClamp", label="Crisp Edges: Gain, −1..1",
-                       inputs={"Min": -1.0, "Max": 1.0})
+    crisp = h.add_node(tree, "ShaderNodeClamp", label="Crisp Edges: Gain, Clamped Far Out",
+                       inputs={"Min": -clouds.CLOUDINESS_RANGE, "Max": clouds.CLOUDINESS_RANGE})
     gained = h.math(tree, "MULTIPLY", faded.outputs[0], clouds.EDGE_GAIN, label="× Edge Gain")
     h.link(tree, gained.outputs[0], crisp.inputs["Value"])
     wet = h.math(tree, "MULTIPLY_ADD", inputs["Precipitation"], clouds.PRECIPITATION_GAIN,
@@ -248,7 +236,9 @@ def build(tree):
     wet.inputs[2].default_value = 1.0
     cloudiness = h.math(tree, "MULTIPLY", crisp.outputs[0], wet.outputs[0], label="Cloudiness")
     h.link(tree, cloudiness.outputs[0], group_out.inputs["Cloudiness"])
-    positive = h.math(tree, "MAXIMUM", cloudiness.outputs[0], 0.0, label="Where Cloud")
+    positive = h.add_node(tree, "ShaderNodeClamp", label="Where Cloud: 0..Wet")
+    h.link(tree, cloudiness.outputs[0], positive.inputs["Value"])
+    h.link(tree, wet.outputs[0], positive.inputs["Max"])
     result = h.math(tree, "MULTIPLY", positive.outputs[0], inputs["Density"], label="Density")
     h.link(tree, result.outputs[0], group_out.inputs["Density"])
 

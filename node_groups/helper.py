@@ -142,6 +142,17 @@ def add_sockets(tree, input_names, inputs, outputs):
         add_output(tree, name, socket_type, description)
 
 
+class GeometryBuilder:
+    """A shader group's builder for geometry nodes, shaped like a builder module for ensure_group:
+    the same nodes (position() picks the Position node), its name ending in "Field"."""
+
+    TREE_TYPE = "GeometryNodeTree"
+
+    def __init__(self, name, version, description, build):
+        self.NAME, self.VERSION, self.DESCRIPTION = f"{name} Field", version, description
+        self.build = build
+
+
 def position(tree):
     """A node whose Position output is the point being shaded (shader trees) or evaluated
     (geometry nodes): one builder serves both."""

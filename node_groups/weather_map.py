@@ -93,20 +93,8 @@ def _warp(tree, map_space):
     return scaled.outputs[0], nodes + [scaled]
 
 
-class GeometryBuilder:
-    """This group built for geometry nodes, shaped like a builder module for ensure_group."""
-
-    VERSION = VERSION
-    TREE_TYPE = "GeometryNodeTree"
-    NAME = f"{NAME} Field"
-    DESCRIPTION = DESCRIPTION
-
-    @staticmethod
-    def build(tree):
-        build(tree)
-
-
-GEOMETRY = GeometryBuilder()
+# This group built for geometry nodes (the cloud grid evaluates it per voxel).
+GEOMETRY = h.GeometryBuilder(NAME, VERSION, DESCRIPTION, lambda tree: build(tree))
 
 
 def build(tree):

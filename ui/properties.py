@@ -148,7 +148,7 @@ class SandscapeAtmosphereSettings(bpy.types.PropertyGroup):
 
 
 CLOUD_TYPES = (("STRATUS", "Stratus", "Low, flat sheets"),
-               ("CUMULUS", "Cumulus", "Heaped clouds in the lower half of the layer"),
+               ("CUMULUS", "Cumulus", "Heaped clouds: flat bases, domes up to 70 % of the layer"),
                ("CUMULONIMBUS", "Cumulonimbus", "Towers through the whole layer"),
                ("MIXED", "Mixed", "The type varies over the sky (the weather map's own type)"))
 
@@ -218,8 +218,8 @@ def cloud_fields(for_operator):
         "droplet_size": FloatProperty(name="Droplet Size", default=20.0, soft_min=5.0, soft_max=50.0,
                                       description="Water droplet diameter in micrometres, for the Mie phase",
                                       **skip),
-        "step": distance("step_m", "Step", 200.0, "Ray-marching step through procedural clouds: smaller "
-                         "is slower and more exact", 1000.0, 1.0),
+        "step": distance("step_m", "Step", 200.0, "Ray-marching step through the clouds: smaller is slower "
+                         "and more exact", 1000.0, 1.0),
         "evaluation": EnumProperty(
             name="Evaluation", default="GRID",
             items=(("GRID", "Voxel Grid", "Evaluate the density once into a voxel grid (geometry nodes): "
