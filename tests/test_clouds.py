@@ -169,6 +169,17 @@ def test_sun_transmittance_through_a_uniform_layer(elevation_degrees):
     assert shaded / lit == pytest.approx(expected, rel=0.005)
 
 
+def black_sky_and_point_sun(scene):
+    """A black world and a sun lamp of no angle, pointing straight down; returns the lamp."""
+    world = bpy.data.worlds.new("Black")
+    world.node_tree.nodes["Background"].inputs["Strength"].default_value = 0.0
+    scene.world = world
+    lamp = bpy.data.objects.new("Sun", bpy.data.lights.new("Sun", "SUN"))
+    lamp.data.angle = 0.0
+    scene.collection.objects.link(lamp)
+    return lamp
+
+
 def test_clouds_shade_the_ground_where_they_cover_the_sky():
     """Cycles casts the grid's shadows: under a sun at the zenith the ground seen from above (from
     below the layer, no bounces, a black sky) gets less than half the sun's light exactly where
@@ -182,12 +193,7 @@ def test_clouds_shade_the_ground_where_they_cover_the_sky():
     bpy.ops.mesh.primitive_plane_add(size=3 * UP_SIZE)
     scenes.camera("ORTHO", location=(0.0, 0.0, 500.0), ortho_scale=UP_SIZE)
     scene.camera.data.clip_end = 1e6
-    world = bpy.data.worlds.new("Black")
-    world.node_tree.nodes["Background"].inputs["Strength"].default_value = 0.0
-    scene.world = world
-    lamp = bpy.data.objects.new("Sun", bpy.data.lights.new("Sun", "SUN"))
-    lamp.data.angle = 0.0
-    scene.collection.objects.link(lamp)  # straight down
+    black_sky_and_point_sun(scene)  # straight down
     lit = readback.render(scene)[..., 0]
     assert bpy.ops.sandscape.add_clouds(**values) == {"FINISHED"}
     shaded = readback.render(scene)[..., 0] < 0.5 * lit
@@ -312,14 +318,9 @@ def slab_radiance(sun_elevation, forward, back, back_weight):
     scene.cycles.max_bounces = 0
     scenes.camera("ORTHO", location=(0.0, 0.0, 3000.0), ortho_scale=200.0)
     scene.camera.data.clip_end = 1e6
-    world = bpy.data.worlds.new("Black")
-    world.node_tree.nodes["Background"].inputs["Strength"].default_value = 0.0
-    scene.world = world
-    lamp = bpy.data.objects.new("Sun", bpy.data.lights.new("Sun", "SUN"))
-    lamp.data.angle = 0.0
+    lamp = black_sky_and_point_sun(scene)
     lamp.data.energy = SUN_STRENGTH
     lamp.rotation_euler = (math.pi / 2 - sun_elevation, 0.0, math.radians(30.0))
-    scene.collection.objects.link(lamp)
     assert bpy.ops.sandscape.add_clouds(coverage=1.0, base=1000.0, thickness=SLAB_THICKNESS, step=1.0,
                                         evaluation="PROCEDURAL", forward=forward, back=back,
                                         back_weight=back_weight) == {"FINISHED"}
