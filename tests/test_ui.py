@@ -173,7 +173,7 @@ def test_shift_a_offers_sandscape(sandscape):
                         "Sandscape Sand Normal", "Sandscape Ripples", "Sandscape Cloud Density",
                         "Sandscape Weather Map"}),
     ("CompositorNodeTree", {"Sandscape Gated Blur", "Sandscape God Rays 32"}),
-    ("GeometryNodeTree", set()),
+    ("GeometryNodeTree", {"Sandscape Cloud Density Field", "Sandscape Weather Map Field"}),
 ])
 def test_node_editors_add_menus_list_our_groups(sandscape, tree_type, expected):
     context = types.SimpleNamespace(space_data=types.SimpleNamespace(tree_type=tree_type))
