@@ -202,7 +202,7 @@ def _build_volume_material(material, coefficients, dust, scene):
     if dust.get("field") is not None:
         field = h.add_node(tree, "ShaderNodeGroup", name="Sandscape Dust Field", label="Dust Field",
                            node_tree=h.ensure_group(dust_field), inputs=dust["field"])
-        field.inputs["FPS"].default_value = scene.render.fps / scene.render.fps_base
+        field.inputs["FPS"].default_value = shot.frames_per_second(scene)
         driver = field.inputs["Frame"].driver_add("default_value").driver
         driver.type = "SCRIPTED"
         driver.expression = "frame"  # a simple expression: evaluated without Python auto-run

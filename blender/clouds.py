@@ -21,9 +21,9 @@ from ..node_groups import cloud_density, weather_map
 from ..node_groups import helper as h
 from . import cloud_grid, units
 from . import ownership as own
-from .shot import camera_views, reach_points
+from .shot import camera_views, frames_per_second, reach_points
 
-CELLS = 48  # cells along each side of the layer's box where the weather map is checked for cloud
+SAMPLES = 192  # points along each side of the layer's box where the weather map is checked for cloud
 
 def scene_settings(scene):
     """scene.sandscape_clouds as apply() takes it: lengths in scene units, the image by name."""
@@ -78,7 +78,7 @@ def layer_box(scene, s):
 
 
 def shot_seconds(scene):
-    fps = scene.render.fps / scene.render.fps_base
+    fps = frames_per_second(scene)
     return scene.frame_start / fps, scene.frame_end / fps
 
 
@@ -124,7 +124,7 @@ def _drive_frame(node):
 def density_inputs(scene, s, region, fade, frame_zero):
     """The Cloud Density group's inputs for settings s, fading out inside region."""
     p = parameters(scene, s)
-    fps = scene.render.fps / scene.render.fps_base
+    fps = frames_per_second(scene)
     xmin, ymin, xmax, ymax = region
     return {"Base": p["base"], "Thickness": p["thickness"], "Density": p["density"],
             "Shape Scale": p["shape_scale"], "Detail Scale": p["detail_scale"], "Erosion": p["erosion"],
@@ -140,7 +140,7 @@ def weather_inputs(scene, s):
     everywhere: the type's noise stays unlinked, so it is never evaluated)."""
     p = parameters(scene, s)
     mixed = s["cloud_type"] == "MIXED"
-    fps = scene.render.fps / scene.render.fps_base
+    fps = frames_per_second(scene)
     inputs = {"Coverage": s["coverage"], "Precipitation": s["precipitation"],
               "Type": 0.5 if mixed else p["cloud_type"], "Mixed Types": float(mixed),
               "Map Scale": p["map_scale"], "Seed": float(s["seed"]), "FPS": fps,
@@ -243,8 +243,8 @@ def plan(scene, s, image=None):
     region, fade = layer_box(scene, s)
     wind = np.asarray(scene.sandscape_atmosphere.wind, np.float64)
     carried = twin.carried_region(region, wind, *shot_seconds(scene))  # frame-0 space over the shot
-    cells = twin.covered_cells(carried, CELLS, coverage_function(s, image))
-    done = {"region": region, "fade": fade, "has_cloud": bool(cells.any()), "voxels": 0, "warning": None}
+    cloudy = twin.has_cloud(carried, SAMPLES, coverage_function(s, image))
+    done = {"region": region, "fade": fade, "has_cloud": cloudy, "voxels": 0, "warning": None}
     if s["evaluation"] == "GRID":
         done["voxel"] = s["voxel"]
         done["box"] = cloud_grid.box_and_resolution(carried, low, high, done["voxel"])
@@ -294,7 +294,7 @@ def apply(scene, s, image=None, done=None):
         cloud_grid.build_tree(tree, material, density_inputs(scene, s, done["region"], done["fade"], True),
                               weather, image, done["box"], done["voxel"])
         cloud_grid.drift_with_wind(layer, scene.sandscape_atmosphere.wind,
-                                   scene.render.fps / scene.render.fps_base)
+                                   frames_per_second(scene))
         # Ray marching steps a grid by its voxel x the step rate: Step long, as procedurally.
         material.cycles.volume_step_rate = float(min(max(s["step"] / done["voxel"], 1e-6), 1e6))
     else:

@@ -6,6 +6,10 @@ import numpy as np
 FRAME_SAMPLES = 16  # camera positions sampled over the frame range
 
 
+def frames_per_second(scene):
+    return scene.render.fps / scene.render.fps_base
+
+
 def scene_camera(scene):
     """The scene's camera object when it is a camera (an empty or a light can be the scene
     camera), else None."""

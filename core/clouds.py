@@ -308,27 +308,13 @@ def box_mesh(region, low, high):
     return verts, faces
 
 
-def covered_cells(bounds, cells, coverage_at, spread=0.0, oversample=4):
-    """Which cells of a grid over bounds (cells x cells) can hold cloud: coverage_at(xy) > 0 at
-    any of oversample^2 points in the cell, dilated by spread (world units) plus one cell for
-    what falls between samples. Returns a bool array (rows = y)."""
+def has_cloud(bounds, samples, coverage_at):
+    """Whether the weather map has cloud anywhere over bounds (xmin, ymin, xmax, ymax):
+    coverage_at(xy) > 0 at any point of a samples x samples grid of cell centres."""
     xmin, ymin, xmax, ymax = bounds
-    nx = ny = cells
-    step = np.array([(xmax - xmin) / nx, (ymax - ymin) / ny])
-    xs = xmin + (np.arange(nx * oversample) + 0.5) * step[0] / oversample
-    ys = ymin + (np.arange(ny * oversample) + 0.5) * step[1] / oversample
-    grid = np.stack(np.meshgrid(xs, ys), axis=-1)
-    values = coverage_at(grid)
-    hit = (values > 0).reshape(ny, oversample, nx, oversample).any(axis=(1, 3))
-    reach = 1 + int(math.ceil(spread / max(min(step), 1e-12)))
-    reach = min(reach, cells)
-    grown = hit.copy()
-    if hit.any() and reach > 0:
-        padded = np.pad(hit, reach)
-        for dy in range(-reach, reach + 1):
-            for dx in range(-reach, reach + 1):
-                grown |= padded[reach + dy:reach + dy + ny, reach + dx:reach + dx + nx]
-    return grown
+    xs = xmin + (np.arange(samples) + 0.5) * (xmax - xmin) / samples
+    ys = ymin + (np.arange(samples) + 0.5) * (ymax - ymin) / samples
+    return bool((coverage_at(np.stack(np.meshgrid(xs, ys), axis=-1)) > 0).any())
 
 
 # ---------------------------------------------------------------- views of the twin
