@@ -1,10 +1,10 @@
 """The bpy side of the atmosphere: the sun lamp, the sky world, the bounded dust volume.
 
 A world volume would block a sun lamp completely in Cycles (the world volume is infinite), so
-with a sun the scattering medium is a box fitted to what the camera sees over the frame range,
-out to where the haze lets 1 % through (around the geometry without a camera). Moving the
-camera afterwards means running Add Atmosphere again. Everything is found in the
-scene being set up: another scene gets its own sun, sky and dust box.
+with a sun the scattering medium is a box around the camera's path over the frame range, out
+to where the haze lets 1 % through in every horizontal direction (around the geometry without a
+camera): turning the camera or changing the frame size afterwards shows no edge. Everything is
+found in the scene being set up: another scene gets its own sun, sky and dust box.
 """
 
 import math
@@ -15,6 +15,7 @@ from mathutils import Vector
 
 from ..core import atmosphere as air
 from ..core import sun as sky_sun
+from ..core.clouds import layer_region as holding_region
 from ..node_groups import dust_field, dust_volume
 from ..node_groups import helper as h
 from . import ownership as own
@@ -141,13 +142,19 @@ def haze_reach(scene, extinction):
 
 
 def shot_bounds(scene, reach, margin, floor):
-    """The box the camera looks through over the frame range, `reach` deep, no lower than
-    `floor` (the rays stop at the ground). None without a camera."""
+    """The box the camera looks through over the frame range: `reach` out from wherever the
+    camera stands, in every horizontal direction (a turned camera or another frame size stays
+    inside), up to the highest point any view reaches, no lower than `floor` (the rays stop at
+    the ground). None without a camera."""
     camera = shot.scene_camera(scene)
     if camera is None:
         return None
-    points = shot.reach_points(shot.camera_views(scene, camera), reach)
-    low, high = points.min(0) - margin, points.max(0) + margin
+    views = shot.camera_views(scene, camera)
+    points = shot.reach_points(views, reach)
+    cameras = np.array([view["matrix"][:2, 3] for view in views])
+    region = np.asarray(holding_region(cameras, points[:, :2], reach, margin))
+    low = np.r_[region[:2], points[:, 2].min() - margin]
+    high = np.r_[region[2:], points[:, 2].max() + margin]
     low[2] = max(low[2], floor)
     high[2] = max(high[2], low[2] + margin)
     return low, high

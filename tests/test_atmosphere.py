@@ -222,7 +222,32 @@ def test_the_dust_box_spans_the_shot_not_the_cube(unit_scale):
     inside = far[far[:, 2] > 0.0]  # the ground ends the rays below it
     assert (inside >= low - 1e-3).all() and (inside <= high + 1e-3).all()
     assert (origin >= low).all() and (origin <= high).all()
-    span = np.r_[far, origin[None]]
-    # Tight: no wider than the views plus the margin.
-    assert (high[:2] - low[:2] <= span[:, :2].max(0) - span[:, :2].min(0) + 2 * margin + 1e-3).all()
+    # Reach in every horizontal direction from the camera, and no more; no higher than the views.
+    assert low[:2] == pytest.approx(origin[:2] - reach - margin, abs=1e-3)
+    assert high[:2] == pytest.approx(origin[:2] + reach + margin, abs=1e-3)
+    assert high[2] == pytest.approx(max(far[:, 2].max(), origin[2]) + margin, abs=1e-3)
     assert low[2] == pytest.approx(-margin, abs=1e-3)  # from under the ground, which ends the rays
+
+
+def test_a_turned_camera_and_another_frame_size_see_no_edge_of_the_dust_box():
+    """The camera turned round and the frame made wide after Add Atmosphere: every ray of the new
+    frame still runs out to the haze's 1 % reach (or to the ground, or up out of the layer
+    through its top, a plane and not an edge) before it leaves the box."""
+    low, high, camera, per_metre = lone_cube_dust_box(1.0)
+    scene = bpy.context.scene
+    settings = scene.sandscape_atmosphere
+    reach = math.log(100.0) / float(np.min(air.rayleigh_coefficients(settings.density,
+                                                                      tuple(settings.wavelengths))))
+    camera.rotation_euler.z += math.radians(180.0)
+    scene.render.resolution_x, scene.render.resolution_y = 2400, 400
+    bpy.context.view_layer.update()
+    matrix = np.array(camera.matrix_world)
+    corners = np.array([tuple(c) for c in camera.data.view_frame(scene=scene)], np.float64)
+    directions = corners / np.linalg.norm(corners, axis=1, keepdims=True) @ matrix[:3, :3].T
+    origin = matrix[:3, 3]
+    for direction in directions:
+        # Where the ray leaves through a side: every side at least reach away along the ray.
+        with np.errstate(divide="ignore"):
+            exits = np.where(direction[:2] > 0, (high[:2] - origin[:2]) / direction[:2],
+                             (low[:2] - origin[:2]) / direction[:2])
+        assert exits.min() >= reach - 1e-3
