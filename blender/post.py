@@ -67,7 +67,7 @@ def build(tree, settings, white=1.0, image_denoised=False):
             # Raw passes swapped into Cycles' denoised image put their noise back (seed to seed
             # 0.55 against 0.148 for the denoised image alone, tests/test_denoise_but_glints.py).
             volume = _denoise(tree, volume, name=DENOISE_VOLUME)
-        image = _with_blurred(tree, image, volume, settings)
+        image = _with_blurred(tree, layers, image, volume, settings)
     if settings.use_god_rays:
         rays = h.add_node(tree, "CompositorNodeGroup", name=RAYS, label="God Rays",
                           node_tree=h.ensure_group(god_rays.Builder(settings.samples)),
@@ -103,12 +103,14 @@ def _scattered(tree, layers, image):
     return h.vector_math(tree, "MINIMUM", passes.outputs[0], image, label="Scattered Light").outputs[0]
 
 
-def _with_blurred(tree, image, volume, settings):
+def _with_blurred(tree, layers, image, volume, settings):
     """The image with its scattered light swapped for the gated blur of it: the blur's change
-    is added, so geometry stays sharp."""
+    is added, so geometry stays sharp; guided by the sky seen (the environment pass), so cloud
+    light is not smeared over the sky round a cloud."""
     blur = h.add_node(tree, "CompositorNodeGroup", name="Sandscape Gated Blur", label="Gated Blur",
                       node_tree=h.ensure_group(gated_blur), inputs={"Threshold": settings.blur_threshold})
     h.link(tree, volume, blur.inputs["Image"])
+    h.link(tree, layers.outputs["Environment"], blur.inputs["Guide"])
     change = h.vector_math(tree, "SUBTRACT", blur.outputs["Image"], volume, label="Blur's Change")
     return h.vector_math(tree, "ADD", image, change.outputs[0], label="+ Blur's Change").outputs[0]
 
@@ -206,7 +208,7 @@ def _denoised(tree, layers, settings):
         # left blotches in the sky (σ 0.007 there against 0.0053; issue 14 measured 0.019 with
         # the raw passes swapped back in).
         volume = _denoise(tree, _scattered(tree, layers, image), name=DENOISE_VOLUME)
-        clean = _with_blurred(tree, _denoise(tree, image, layers, DENOISE), volume, settings)
+        clean = _with_blurred(tree, layers, _denoise(tree, image, layers, DENOISE), volume, settings)
     sparkling = h.add_node(tree, "ShaderNodeMix", label="Sparkles Raw", data_type="RGBA")
     h.link(tree, _sparkle_weight(tree, layers, _glint_light(tree, layers), clean), sparkling.inputs["Factor"])
     h.link(tree, clean, h.socket(sparkling.inputs, "A"))
@@ -442,7 +444,7 @@ def set_passes(scene, settings):
     for view_layer in scene.view_layers:
         view_layer.cycles.use_pass_volume_direct = settings.use_blur
         view_layer.cycles.use_pass_volume_indirect = settings.use_blur
-        view_layer.use_pass_environment = settings.use_god_rays
+        view_layer.use_pass_environment = settings.use_god_rays or settings.use_blur
         view_layer.cycles.denoising_store_passes = settings.use_denoise
         for name in ("use_pass_glossy_direct", "use_pass_glossy_indirect", "use_pass_glossy_color",
                      "use_pass_emit"):

@@ -5,8 +5,9 @@ Twins of the compositor groups "Sandscape Gated Blur" and "Sandscape God Rays". 
 
 Gated blur (seed 000, section 4.2): a 3x3 Gaussian (centre 0.147761, edges 0.118318,
 corners 0.0947416, normalised to sum 1) replaces a pixel only where the luminance of the
-blurred and the original pixel differ by more than a threshold, so flat areas keep detail.
-Beyond the image the nearest edge pixel repeats.
+blurred and the original pixel differ by more than a threshold, so flat areas keep detail; and
+not across the outline of what hides the sky (a guide image, the environment pass), so cloud
+light is not smeared over the sky. Beyond the image the nearest edge pixel repeats.
 
 God rays (seed 002, GPU Gems 3 ch. 13): for a pixel at uv and the sun at L,
     rays(uv) = exposure * sum_{i=1..N} weight * decay^(i-1) * occlusion(uv - i * (uv - L) * density / N)
@@ -17,6 +18,9 @@ import numpy as np
 
 GAUSS_CENTRE, GAUSS_EDGE, GAUSS_CORNER = 0.147761, 0.118318, 0.0947416
 LUMINANCE = np.array([0.2126, 0.7152, 0.0722])  # Rec. 709, Blender's linear scene luminance
+# The blur stops where the sky seen changes by more than this share across 3x3 pixels: cloud
+# light blurred over a cloud's outline made a bright one-pixel ring in the sky (bench/glow_ring.py).
+EDGE = 0.1
 
 
 class PostError(ValueError):
@@ -48,11 +52,25 @@ def blur3(image):
     return out
 
 
-def gated_blur(image, threshold):
-    """The blurred pixel where |L(blurred) - L(original)| > threshold, else the original."""
+def guide_edges(guide, edge=EDGE):
+    """Where the guide's luminance spans more than `edge` of its largest value over the 3x3
+    neighbourhood (edge pixels repeated): an opaque outline, such as a cloud or the land against
+    the sky in the environment pass. A black guide has none."""
+    values = np.pad(luminance(guide), 1, mode="edge")
+    height, width = values.shape[0] - 2, values.shape[1] - 2
+    shifted = np.stack([values[dy:dy + height, dx:dx + width] for dy in range(3) for dx in range(3)])
+    high = shifted.max(axis=0)
+    return high - shifted.min(axis=0) > edge * high
+
+
+def gated_blur(image, threshold, guide=None, edge=EDGE):
+    """The blurred pixel where |L(blurred) - L(original)| > threshold and the guide has no edge
+    (guide_edges), else the original."""
     image = np.asarray(image, dtype=np.float64)
     blurred = blur3(image)
     gate = np.abs(luminance(blurred) - luminance(image)) > threshold
+    if guide is not None:
+        gate &= ~guide_edges(guide, edge)
     return np.where(gate[..., None], blurred, image)
 
 

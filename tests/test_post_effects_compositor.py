@@ -46,6 +46,34 @@ def test_gated_blur_matches_its_twin(groups, helper, threshold):
         assert np.abs(result[..., :3] - image[..., :3]).max() <= 1e-6 * scale
 
 
+def sky_with_a_cloud():
+    """An environment pass: sky of 1 with a dark disc (a cloud hiding it), and a faint haze ramp."""
+    rows, cols = np.mgrid[:H, :W]
+    guide = np.ones((H, W, 4))
+    guide[..., :3] *= (1.0 + 0.002 * cols)[..., None]  # haze: 0.2 % a pixel, far under Edge
+    guide[(rows - 16) ** 2 + (cols - 20) ** 2 < 64, :3] = 0.02
+    return guide
+
+
+@pytest.mark.parametrize("edge", [0.1, 0.5])
+def test_gated_blur_keeps_the_guides_outlines_sharp(groups, helper, edge):
+    """The guide's outline (a cloud against the sky) stays sharp, the haze and the flat sky are
+    blurred as before; the compositor as its twin."""
+    group = helper.ensure_group(groups("gated_blur"))
+    image, guide = synthetic(3), sky_with_a_cloud()
+    values = {"Image": image, "Threshold": 0.0, "Guide": guide, "Edge": edge}
+    result = readback.composite_group(group, values, "Image", (W, H))
+    expected = post.gated_blur(image, 0.0, guide, edge)
+    assert np.abs(result[..., :3] - expected[..., :3]).max() < 1e-4
+    outline = post.guide_edges(guide, edge)
+    rows, cols = np.mgrid[:H, :W]
+    ring = np.abs(np.hypot(rows - 16, cols - 20) - 8.0) < 1.0
+    assert outline[ring].mean() > 0.9 and not outline[:, 35:].any()  # the disc's rim, not the haze
+    unguided = post.gated_blur(image, 0.0)
+    assert np.array_equal(expected[outline], image[outline])
+    assert np.array_equal(expected[~outline], unguided[~outline])
+
+
 def test_gated_blur_preserves_energy_with_the_gate_open(groups, helper):
     group = helper.ensure_group(groups("gated_blur"))
     image = synthetic(1, border=2)  # the kernel never reaches the edge, so nothing leaves the frame
