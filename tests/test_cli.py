@@ -60,20 +60,14 @@ def test_bad_input_exits_2_with_one_line(blend, not_a_blend, args, message):
     assert "Traceback" not in result.stderr + result.stdout
 
 
-def test_the_output_extension_picks_the_format(blend, tmp_path):
-    rendered = run("render", str(blend), "--output", str(tmp_path / "frame.jpg"), "--width", "32",
-                   "--height", "18", "--samples", "1")
-    assert rendered.returncode == 0, rendered.stderr
-    assert (tmp_path / "frame.jpg").read_bytes()[:3] == b"\xff\xd8\xff"  # a JPEG, named as asked
-    assert not (tmp_path / "frame.png").exists()
-
-
-def test_build_then_render(blend, tmp_path):
-    rendered = run("render", str(blend), "--output", str(tmp_path / "frame.png"), "--frame", "5",
+def test_build_then_render_with_the_format_the_extension_picks(blend, tmp_path):
+    rendered = run("render", str(blend), "--output", str(tmp_path / "frame.jpg"), "--frame", "5",
                    "--frame", "9", "--width", "64", "--height", "36", "--samples", "1")
     assert rendered.returncode == 0, rendered.stderr
-    assert (tmp_path / "frame_0005.png").is_file() and (tmp_path / "frame_0009.png").is_file()
     assert rendered.stdout.count("sandscape: frame") == 2
+    for frame in (5, 9):  # JPEGs, named as asked
+        assert (tmp_path / f"frame_{frame:04d}.jpg").read_bytes()[:3] == b"\xff\xd8\xff"
+    assert not list(tmp_path.glob("*.png"))
 
 
 def test_a_bench_runs_quick_from_the_command_line():

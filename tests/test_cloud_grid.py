@@ -123,9 +123,10 @@ def test_a_turned_camera_and_another_frame_size_stay_inside_the_layer():
     assert after == pytest.approx(before)
 
 
-def test_too_many_voxels_coarsen_the_grid_with_a_warning():
+def test_too_many_voxels_coarsen_the_grid_with_a_warning(monkeypatch):
     """A fast wind carries the sky far over the shot: the grid keeps within its budget by larger
-    voxels, and says so."""
+    voxels, and says so. (A budget of 300,000 voxels here: evaluating the real one takes 20 s.)"""
+    monkeypatch.setattr(cloud_grid, "MAX_VOXELS", 300_000)
     bpy.ops.wm.read_homefile(use_empty=True)
     scenes.camera("PERSP", location=(0.0, 0.0, 2.0), rotation=(math.radians(80.0), 0.0, 0.0))
     bpy.context.scene.camera.data.clip_end = 1e6
@@ -135,7 +136,7 @@ def test_too_many_voxels_coarsen_the_grid_with_a_warning():
     warning = [text for kinds, text in reports if kinds == {"WARNING"}]
     assert warning and "Voxel Size 5 m would make" in warning[0], reports
     plan = clouds.plan(bpy.context.scene, clouds.scene_settings(bpy.context.scene))
-    assert plan["voxels"] <= cloud_grid.MAX_VOXELS and plan["voxel"] > 5.0
+    assert 0.9 * cloud_grid.MAX_VOXELS <= plan["voxels"] <= cloud_grid.MAX_VOXELS and plan["voxel"] > 5.0
 
 
 def test_a_camera_that_clips_short_of_the_layer_is_warned():

@@ -31,11 +31,10 @@ def test_refuses_a_scene_with_meshes():
         bpy.ops.sandscape.build_demo_scene()
 
 
-def test_every_frame_the_camera_is_above_the_sand_and_the_walker_on_it(sandscape):
+def test_every_frame_the_camera_is_above_the_sand_and_the_walker_on_it(sandscape, demo_scene):
     """The whole animation, frame by frame: the camera at least half a metre above the sand under
     it (it keeps 0.6 m), the walker's feet on the sand within 5 cm."""
-    bpy.ops.sandscape.build_demo_scene()
-    scene = bpy.context.scene
+    scene = demo_scene
     terrain, walker = scene.sandscape_footprints.terrain, scene.sandscape_footprints.walker
     top = float(np.max([v[2] for v in terrain.bound_box]))
     cameras, feet = [], []

@@ -96,8 +96,7 @@ def links():
             for owner, tree in node_trees()}
 
 
-def test_demo_renders_identically_without_the_extension(tmp_path):
-    bpy.ops.sandscape.build_demo_scene()
+def test_demo_renders_identically_without_the_extension(demo_scene, tmp_path):
     path = tmp_path / "demo.blend"
     bpy.ops.wm.save_as_mainfile(filepath=str(path), compress=True)
     with_addon = small_render(bpy.context.scene)

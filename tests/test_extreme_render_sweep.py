@@ -53,9 +53,8 @@ def settings_cases(rna_type):
 
 
 @pytest.fixture
-def desert(sandscape):
-    bpy.ops.sandscape.build_demo_scene()
-    scene = bpy.context.scene
+def desert(demo_scene):
+    scene = demo_scene
     scene.render.resolution_x, scene.render.resolution_y = 48, 27
     scene.render.resolution_percentage = 100
     scene.cycles.samples = 2

@@ -14,10 +14,9 @@ def messages(capture):
 
 
 @pytest.fixture
-def wasteful_demo():
+def wasteful_demo(demo_scene):
     """The demo plus things that cost render time and add nothing."""
-    bpy.ops.sandscape.build_demo_scene()
-    scene = bpy.context.scene
+    scene = demo_scene
     fog = scenes.empty_fog(2, (0, 0, 5))
     bpy.ops.mesh.primitive_plane_add(size=4, location=(0, 0, 0.5))
     slab = bpy.context.active_object
@@ -35,9 +34,8 @@ def world_volume_linked(scene):
                for n in scene.world.node_tree.nodes)
 
 
-def test_a_world_volume_that_scatters_stays(sandscape):
-    bpy.ops.sandscape.build_demo_scene()
-    scene = bpy.context.scene
+def test_a_world_volume_that_scatters_stays(demo_scene):
+    scene = demo_scene
     scenes.world_volume(scene.world, density=1e-4)
     assert not any("World" in line for line in run(dry_run=False))
     assert world_volume_linked(scene)
