@@ -96,7 +96,8 @@ def _outline(tree, group_in, offsets):
         low = h.math(tree, "MINIMUM", low.outputs[0], shift.outputs[0], (-200, y))
         nodes += [high, low]
     span = h.math(tree, "SUBTRACT", high.outputs[0], low.outputs[0], (0, -1400), "Guide's Span")
-    allowed = h.math(tree, "MULTIPLY", high.outputs[0], group_in.outputs["Edge"], (0, -1600), "Edge × Largest")
+    allowed = h.math(tree, "MULTIPLY", high.outputs[0], group_in.outputs["Edge"], (0, -1600),
+                     "Edge × Largest")
     outline = h.math(tree, "GREATER_THAN", span.outputs[0], allowed.outputs[0], (200, -1500), "Outline")
     h.frame(tree, "Outline of the Guide (3×3 Span)", nodes + [span, allowed, outline])
     return outline
