@@ -112,7 +112,9 @@ def set_mesh(layer, verts, faces):
         mesh.materials.append(material)
     layer.data = mesh
     if old.users == 0:
+        name = old.name
         bpy.data.meshes.remove(old)
+        mesh.name = name  # running Add Clouds again keeps the mesh's name, not "….001"
 
 
 def _drive_frame(node):

@@ -46,7 +46,7 @@ def transmittance_up(resolution=96, **values):
     scene.camera.data.clip_end = 1e6
     white_sky()
     readback.cycles_scene(scene, (resolution, resolution), samples=1)  # the frame the layer spans
-    values = {"reach": 1.0, "voxel": 150.0, **values}  # the frame itself is the sky it needs
+    values = {"reach": 1.0, "voxel": 200.0, **values}  # the frame itself is the sky it needs
     assert bpy.ops.sandscape.add_clouds(**values) == {"FINISHED"}
     layer = cloud_layer(scene)
     absorbing_only(layer)
@@ -216,6 +216,7 @@ def test_layer_spans_reach_around_the_camera_and_updates_in_place():
         trees = [t for t in bpy.data.node_groups if t.get("sandscape_group") == "cloud_grid"]
         modifiers = [m for m in layers[0].modifiers if m.type == "NODES"]
         assert len(trees) == len(modifiers) == (evaluation == "GRID")
+        assert [m.name for m in bpy.data.meshes] == ["Sandscape Clouds"]  # the same name every run
     layer = layers[0]
     settings = scene.sandscape_clouds
     verts = np.array([v.co[:] for v in layer.data.vertices])
