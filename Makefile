@@ -31,8 +31,11 @@ $(STAMP): $(REQUIREMENTS)
 	$(PY) -m pip install --disable-pip-version-check -q -r $(REQUIREMENTS)
 	touch $(STAMP)
 
+# QUALITY: draft (default, minutes), preview, or final (the 1280x720 poster frame).
+QUALITY ?= draft
+
 demo: $(STAMP)
-	$(PY) devtools/demo.py --output out/demo.png
+	$(PY) devtools/demo.py --quality $(QUALITY) --output out/demo.png
 
 lint: $(STAMP)
 	$(VENV)/bin/ruff check .

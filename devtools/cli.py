@@ -114,6 +114,9 @@ def render(args):
         scene.cycles.samples = args.samples
     scene.render.image_settings.file_format = file_format
     scene.render.use_file_extension = False  # the name given is the name written
+    # Frames after the first reuse the evaluated scene (the file is not saved): the clouds' voxel
+    # grid and the terrain are synced into Cycles once, not once per frame.
+    scene.render.use_persistent_data = len(frames) > 1 or scene.render.use_persistent_data
     for index, frame in enumerate(frames or [scene.frame_current]):
         scene.frame_set(frame)
         target = output if len(frames) <= 1 else output.with_name(f"{output.stem}_{frame:04d}{output.suffix}")
