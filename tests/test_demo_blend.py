@@ -15,9 +15,8 @@ def inventory():
     return names, versions
 
 
-def test_committed_demo_matches_a_fresh_build():
-    bpy.ops.sandscape.build_demo_scene()
-    fresh = inventory()
+def test_committed_demo_matches_a_fresh_build(demo_scene):
+    fresh = inventory()  # the run's own build (tests/conftest.py)
     bpy.ops.wm.open_mainfile(filepath=str(REPO / "demo.blend"), load_ui=False)
     committed = inventory()
     assert committed[0] == fresh[0], "demo.blend is stale: run `make demo` and commit it"

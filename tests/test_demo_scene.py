@@ -9,9 +9,9 @@ def ours(kind):
     return [o for o in bpy.data.objects if o.get("sandscape_object") == kind]
 
 
-def test_builds_every_part(sandscape):
-    assert bpy.ops.sandscape.build_demo_scene() == {"FINISHED"}
-    scene = bpy.context.scene
+def test_builds_every_part(sandscape, demo_scene):
+    """The run's demo (tests/conftest.py: built by the operator, which finished, and saved)."""
+    scene = demo_scene
     terrain = scene.sandscape_footprints.terrain
     material = terrain.active_material
     groups = sandscape.blender.sand
