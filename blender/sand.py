@@ -166,6 +166,9 @@ def update_material(material, values, image=None, look="PHYSICAL", glint_mode="L
     # Glints are tiny highlights: sampling the emissive ground as a light gains nothing and
     # cost +113 % render time instead of +13 % (bench/glints.py). Found by BSDF rays they stay unbiased.
     material.cycles.emission_sampling = "NONE"
+    # Journey lights slopes by a normal far from the surface's; the correction's softening would
+    # darken them (the contrast at N.L 0.1-0.35 lost a tenth on a sphere). Physical keeps it.
+    material.cycles.use_bump_map_correction = look != "JOURNEY"
     wanted = (look, glint_mode, "IMAGE" if image is not None else "PROCEDURAL", ripple_values is not None)
     if structure(material) != wanted:
         kept = _footprint_state(material)

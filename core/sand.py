@@ -4,9 +4,10 @@ glint_facets        <-> "Sandscape Glint Facet" / "Sandscape Lit Glints": which 
                         and which way each grain's mirror facet faces
 sand_normal         <-> "Sandscape Sand Normal": the surface normal nudged towards a random
                         direction per grain (Journey's sand normal, an nlerp)
-journey_diffuse     <-> the Diffuse Contrast part of "Sandscape Journey Sand": Journey's
-                        saturate(4 N.L) on a normal whose vertical part is squashed, as the Toon
-                        BSDF Cycles renders it
+journey_contrast        the seed's own diffuse contrast, saturate(4 N'.L), N' the normal with
+                        its vertical part scaled by 0.3 (not renormalised): the reference
+journey_diffuse     <-> the Diffuse Contrast part of "Sandscape Journey Sand": that contrast as
+                        the two Toon BSDFs Cycles renders (a ramp in two straight pieces)
 ocean_roughness     <-> the Ocean Specular part: a Blinn-Phong exponent as Beckmann roughness
 rim                 <-> the Rim part: (1 - N.V)^power x strength
 ripples             <-> "Sandscape Ripples": wind ripples' height and shading normal
@@ -18,7 +19,7 @@ from .glints import F32, _safe_divide
 from .noise_hash import white_noise_3d, white_noise_4d, white_noise_4d_color
 
 MIN_FACET_COS = 0.15  # a facet tilts at most acos(0.15) = 81 degrees, whatever the power
-TOON_SIZE, TOON_SMOOTH = 0.839, 0.161  # acos(0.25) and the rest of a right angle, over pi / 2
+TOON_SIZE = 0.839  # acos(0.25) over pi / 2: fully lit where N'.L reaches 0.25, Journey's 4 N'.L
 SQUASH = 0.3  # Journey's factor on the normal's vertical component
 SAND_COLOR = (0.62, 0.45, 0.27, 1.0)  # linear albedo of both looks (a warm quartz sand)
 REPOSE = np.radians(35.0)  # the slope at which ripples keep their Steep Fraction
@@ -66,40 +67,50 @@ def sand_normal(normal, grain, strength):
     return _unit((1.0 - strength) * normal + strength * _unit(g))
 
 
-def toon_intensity(angle, size=TOON_SIZE, smooth=TOON_SMOOTH):
+def toon_intensity(angle, size, smooth):
     """Cycles' Toon BSDF: 1 within size x 90 degrees of the light, falling linearly to 0 over
-    smooth x 90 degrees."""
-    full, soft = size * np.pi / 2, smooth * np.pi / 2
+    smooth x 90 degrees (size and smooth may be arrays: the group drives them per point)."""
+    full, soft = np.asarray(size) * np.pi / 2, np.asarray(smooth) * np.pi / 2
     angle = np.asarray(angle, np.float64)
-    ramp = 1.0 - (angle - full) / soft if soft > 0 else np.zeros_like(angle)
-    return np.where(angle < full, 1.0, np.where(angle < full + soft, ramp, 0.0))
+    ramp = 1.0 - (angle - full) / np.where(soft > 0, soft, 1.0)
+    return np.where(angle < full, 1.0, np.where((angle < full + soft) & (soft > 0), ramp, 0.0))
 
 
-def bump_shadowing(smooth_normal, shading_normal, light):
-    """Cycles' softening of a diffuse closure whose normal is not the surface's (the bump
-    terminator fix of Conty Estevez et al. 2019): a microfacet-like shadowing whose roughness
-    grows with the angle between the two normals, at the light's angle to the smooth one."""
-    cos_d = np.clip(np.abs(np.sum(smooth_normal * shading_normal, axis=-1)), 0.0, 1.0)
-    tan2_d = (1.0 - cos_d**2) / np.maximum(cos_d**2, 1e-12)
-    alpha2 = np.clip(0.125 * tan2_d, 0.0, 1.0)
-    cos_i = np.maximum(np.abs(np.sum(smooth_normal * light, axis=-1)), 1e-6)
-    tan2_i = (1.0 - cos_i**2) / cos_i**2
-    return 2.0 / (1.0 + np.sqrt(1.0 + alpha2 * tan2_i))
+def journey_contrast(normal, light, size=TOON_SIZE, squash=SQUASH):
+    """Seed 004's diffuse contrast, saturate(N'.L / cos(size x 90 deg)) (4 N'.L at the default),
+    N' the normal with its vertical component times squash, not renormalised: level ground
+    under a 30 degree sun gets 4 x 0.3 x 0.5 = 0.6, slopes facing the sun full light."""
+    squashed = _unit(normal) * np.array([1.0, 1.0, squash])
+    threshold = max(np.cos(size * np.pi / 2), 1e-4)
+    return np.clip(np.sum(squashed * np.asarray(light, np.float64), axis=-1) / threshold, 0.0, 1.0)
 
 
-def journey_diffuse(normal, light, size=TOON_SIZE, smooth=TOON_SMOOTH, squash=SQUASH):
-    """Radiance per unit of sun irradiance and albedo: the Toon BSDF on the squashed normal.
+def contrast_toons(normal, size=TOON_SIZE, squash=SQUASH):
+    """How the node group renders journey_contrast with Toon BSDFs, whose light is a function
+    of the angle to their normal only: on the unit squashed normal the contrast is
+    min(1, k cos angle), k = |N'| / cos(size x 90 deg); two Toons ramp it in two straight
+    pieces (fully lit up to acos(1/k), the knee halfway to 90 degrees).
+    Returns (unit normal, full angle, knee angle, light at full, light at the knee)."""
+    squashed = _unit(normal) * np.array([1.0, 1.0, squash])
+    length = np.linalg.norm(squashed, axis=-1)
+    k = length / max(np.cos(size * np.pi / 2), 1e-4)
+    full = np.arccos(np.minimum(1.0 / np.maximum(k, 1e-12), 1.0))
+    knee = 0.5 * full + np.pi / 4
+    return _unit(squashed), full, knee, np.minimum(k, 1.0), k * np.cos(knee)
 
-    Cycles' Toon BSDF returns intensity x pdf with no cosine, the pdf being uniform over the cone
-    of size + smooth (a hemisphere here): 1 / (2 pi (1 - cos(size + smooth))). As the squashed
-    normal is not the surface's, Cycles also applies its bump shadowing term."""
-    normal = _unit(normal)
-    light = np.asarray(light, np.float64)
-    squashed = _unit(normal * np.array([1.0, 1.0, squash]))
-    cosine = np.clip(np.sum(squashed * light, axis=-1), 0.0, 1.0)
-    cone = min((size + smooth) * np.pi / 2, np.pi / 2)
-    toon = toon_intensity(np.arccos(cosine), size, smooth) / (2 * np.pi * (1.0 - np.cos(cone)))
-    return toon * bump_shadowing(normal, squashed, light)
+
+def journey_diffuse(normal, light, size=TOON_SIZE, squash=SQUASH):
+    """Radiance per unit of sun irradiance and albedo of the group's two Toon BSDFs.
+
+    Cycles' Toon BSDF returns intensity x pdf with no cosine, the pdf uniform over its cone:
+    1 / (2 pi (1 - cos cone)). The group scales each Toon's colour by 1 - cos cone, so the sum
+    is journey_contrast's piecewise-linear ramp / 2 pi (bump-map correction off: the material
+    does not soften a closure whose normal is not the surface's)."""
+    unit, full, knee, top, middle = contrast_toons(normal, size, squash)
+    angle = np.arccos(np.clip(np.sum(unit * np.asarray(light, np.float64), axis=-1), 0.0, 1.0))
+    first = toon_intensity(angle, full / (np.pi / 2), (knee - full) / (np.pi / 2))
+    second = toon_intensity(angle, knee / (np.pi / 2), 1.0 - knee / (np.pi / 2))
+    return ((top - middle) * first + middle * second) / (2 * np.pi)
 
 
 def ocean_roughness(exponent):

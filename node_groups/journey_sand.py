@@ -2,9 +2,13 @@
 as Cycles closures, each term a framed part to see and tune:
 
 - Sand Normal: the normal nudged per grain (Sandscape Sand Normal), which every term uses.
-- Diffuse Contrast: Journey's saturate(4 N.L) on a normal whose vertical component is scaled
-  by 0.3. A Toon BSDF does it: full light within acos(0.25) = 75.5 degrees (size 0.839 of a
-  right angle) falling to none at 90 (smooth 0.161), on the squashed, renormalised normal.
+- Diffuse Contrast: Journey's saturate(4 N'.L), N' the normal with its vertical component
+  scaled by 0.3 and not renormalised. On the unit N' that is min(1, 4 |N'| cos angle), a
+  function of the angle to one normal, which Toon BSDFs light: two of them, their size and
+  smooth driven per point, ramp it in two straight pieces. Each Toon's colour is scaled by
+  1 - cos of its cone, which cancels the pdf Cycles multiplies its light by. The material turns
+  bump-map correction off for this look: its softening of a closure whose normal is not the
+  surface's darkened the slopes the contrast keeps lit.
 - Rim: light reflected at grazing angles, a glossy lobe weighted by (1 - N.V)^power, with its
   own colour and strength.
 - Ocean Specular: a Blinn-Phong lobe of exponent p, as Beckmann roughness (2 / (p + 2))^1/4
@@ -22,7 +26,7 @@ from . import helper as h
 from . import sand_normal
 
 NAME = "Sandscape Journey Sand"
-VERSION = 1
+VERSION = 2
 TREE_TYPE = "ShaderNodeTree"
 DESCRIPTION = ("Journey's sand (seed 004): diffuse contrast, sand normal, rim, ocean specular as Cycles "
                "closures; add the lit glints for the glitter")
@@ -32,10 +36,13 @@ def build(tree):
     tree.description = DESCRIPTION
     h.add_input(tree, "Color", "NodeSocketColor", "Albedo of the sand", sand.SAND_COLOR)
     sand_normal.add_grain_inputs(tree, "Sand normal: how far the grains turn the normal")
-    h.add_input(tree, "Diffuse Size", "NodeSocketFloat", "Diffuse contrast: fully lit within this share "
-                "of a right angle from the light (0.839: N.L above 0.25)", sand.TOON_SIZE, 0.0, 1.0, "FACTOR")
-    h.add_input(tree, "Diffuse Smooth", "NodeSocketFloat", "Diffuse contrast: share of a right angle over "
-                "which the light fades out", sand.TOON_SMOOTH, 0.0, 1.0, "FACTOR")
+    h.add_input(tree, "Diffuse Size", "NodeSocketFloat", "Diffuse contrast: fully lit where the squashed "
+                "N.L reaches the cosine of this share of a right angle (0.839: 0.25, Journey's 4 N.L)",
+                sand.TOON_SIZE, 0.0, 1.0, "FACTOR")
+    unused = h.add_input(tree, "Diffuse Smooth", "NodeSocketFloat", "Not used since version 2 (the "
+                         "contrast fades linearly in N.L, as in Journey); kept so materials linking it "
+                         "still load", 0.161, 0.0, 1.0, "FACTOR")
+    unused.hide_value = True
     h.add_input(tree, "Squash", "NodeSocketFloat", "Diffuse contrast: factor on the normal's vertical "
                 "component (Journey: 0.3)", sand.SQUASH, 0.0, 1.0, "FACTOR")
     h.add_input(tree, "Rim Color", "NodeSocketColor", "Rim: colour of the grazing reflection",
@@ -60,19 +67,7 @@ def build(tree):
     grains = sand_normal.grain_node(tree, inputs)
     normal = grains.outputs["Normal"]
 
-    split = h.add_node(tree, "ShaderNodeSeparateXYZ")
-    h.link(tree, normal, split.inputs[0])
-    low = h.math(tree, "MULTIPLY", split.outputs["Z"], inputs["Squash"], label="Z × Squash")
-    squashed = h.add_node(tree, "ShaderNodeCombineXYZ")
-    h.link(tree, split.outputs["X"], squashed.inputs["X"])
-    h.link(tree, split.outputs["Y"], squashed.inputs["Y"])
-    h.link(tree, low.outputs[0], squashed.inputs["Z"])
-    contrast_normal = h.vector_math(tree, "NORMALIZE", squashed.outputs[0], label="Squashed Normal")
-    toon = h.add_node(tree, "ShaderNodeBsdfToon", label="Diffuse Contrast", component="DIFFUSE")
-    h.link(tree, inputs["Color"], toon.inputs["Color"])
-    h.link(tree, inputs["Diffuse Size"], toon.inputs["Size"])
-    h.link(tree, inputs["Diffuse Smooth"], toon.inputs["Smooth"])
-    h.link(tree, contrast_normal.outputs[0], toon.inputs["Normal"])
+    contrast_nodes, contrast = _diffuse_contrast(tree, inputs, normal)
 
     facing = h.add_node(tree, "ShaderNodeLayerWeight", inputs={"Blend": 0.5})
     h.link(tree, normal, facing.inputs["Normal"])
@@ -96,7 +91,7 @@ def build(tree):
     h.link(tree, normal, ocean.inputs["Normal"])
 
     lit = h.add_node(tree, "ShaderNodeAddShader", label="Diffuse + Rim")
-    h.link(tree, toon.outputs[0], lit.inputs[0])
+    h.link(tree, contrast, lit.inputs[0])
     h.link(tree, rim.outputs[0], lit.inputs[1])
     total = h.add_node(tree, "ShaderNodeAddShader", label="+ Ocean Specular")
     h.link(tree, lit.outputs[0], total.inputs[0])
@@ -106,8 +101,59 @@ def build(tree):
     h.link(tree, weight.outputs[0], group_out.inputs["Rim Weight"])
     h.link(tree, roughness.outputs[0], group_out.inputs["Ocean Roughness"])
     h.frame(tree, "Sand Normal", (grains,))
-    h.frame(tree, "Diffuse Contrast", (split, low, squashed, contrast_normal, toon))
+    h.frame(tree, "Diffuse Contrast", contrast_nodes)
     h.frame(tree, "Rim", (facing, power, falloff, weight, tint, rim))
     h.frame(tree, "Ocean Specular", (plus_two, ratio, roughness, shine, ocean))
     h.frame(tree, "Combined (added: closures take no maximum)", (lit, total))
     h.arrange(tree)
+
+
+def _diffuse_contrast(tree, inputs, normal):
+    """Two Toon BSDFs lighting min(1, k cos angle) on the unit squashed normal (twin:
+    core.sand.contrast_toons, journey_diffuse). Returns (nodes, shader socket)."""
+    nodes = []
+
+    def math(operation, a, b=None, label=None):
+        nodes.append(h.math(tree, operation, a, b, label=label))
+        return nodes[-1].outputs[0]
+
+    split = h.add_node(tree, "ShaderNodeSeparateXYZ")
+    h.link(tree, normal, split.inputs[0])
+    squashed = h.add_node(tree, "ShaderNodeCombineXYZ", label="N'")
+    h.link(tree, split.outputs["X"], squashed.inputs["X"])
+    h.link(tree, split.outputs["Y"], squashed.inputs["Y"])
+    low = math("MULTIPLY", split.outputs["Z"], inputs["Squash"], label="Z × Squash")
+    h.link(tree, low, squashed.inputs["Z"])
+    length = h.vector_math(tree, "LENGTH", squashed.outputs[0], label="|N'|")
+    unit = h.vector_math(tree, "NORMALIZE", squashed.outputs[0], label="Squashed Normal")
+    nodes += [split, squashed, length, unit]
+    angle = math("MULTIPLY", inputs["Diffuse Size"], 1.5707963, label="Size × 90°")
+    threshold = math("MAXIMUM", math("COSINE", angle), 1e-4, label="Fully Lit N'·L")
+    k = math("DIVIDE", length.outputs["Value"], threshold, label="k = |N'| / Fully Lit")
+    full = math("ARCCOSINE", math("MINIMUM", math("DIVIDE", 1.0, k), 1.0), label="Fully Lit Angle")
+    knee = math("ADD", math("MULTIPLY", full, 0.5), 0.7853982, label="Knee Angle")
+    top = math("MINIMUM", k, 1.0, label="Light at Full")
+    middle = math("MULTIPLY", k, math("COSINE", knee), label="Light at Knee")
+    size_first = math("MULTIPLY", full, 0.6366198, label="Size (Full)")
+    smooth_first = math("SUBTRACT", math("MULTIPLY", knee, 0.6366198), size_first, label="Smooth to Knee")
+    size_second = math("MULTIPLY", knee, 0.6366198, label="Size (Knee)")
+    smooth_second = math("SUBTRACT", 1.0, size_second, label="Smooth to 90°")
+    cone = math("SUBTRACT", 1.0, math("COSINE", knee), label="1 − cos Knee")
+    weight_first = math("MULTIPLY", math("SUBTRACT", top, middle), cone, label="First Toon Weight")
+    shaders = []
+    for label, size, smooth, weight in (("Toon to the Knee", size_first, smooth_first, weight_first),
+                                        ("Toon to 90°", size_second, smooth_second, middle)):
+        colour = h.vector_math(tree, "SCALE", inputs["Color"], label=f"Colour × Weight ({label})")
+        h.link(tree, weight, colour.inputs["Scale"])
+        toon = h.add_node(tree, "ShaderNodeBsdfToon", label=label, component="DIFFUSE")
+        h.link(tree, colour.outputs[0], toon.inputs["Color"])
+        h.link(tree, size, toon.inputs["Size"])
+        h.link(tree, smooth, toon.inputs["Smooth"])
+        h.link(tree, unit.outputs[0], toon.inputs["Normal"])
+        nodes += [colour, toon]
+        shaders.append(toon.outputs[0])
+    both = h.add_node(tree, "ShaderNodeAddShader", label="Diffuse Contrast")
+    h.link(tree, shaders[0], both.inputs[0])
+    h.link(tree, shaders[1], both.inputs[1])
+    nodes.append(both)
+    return nodes, both.outputs[0]

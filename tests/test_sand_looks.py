@@ -17,7 +17,8 @@ from devtools import readback, scenes
 
 RES = 96
 SCALE = 2.2
-DIFFUSE_TOLERANCE = 0.02  # the issue's: rendered brightness against the twin, intensity 0..1
+DIFFUSE_TOLERANCE = 0.05  # the issue's: rendered brightness against the seed's model, intensity 0..1
+TWIN_TOLERANCE = 0.005  # against the two Toons the group renders (float32, 1 sample)
 WIDTH_TOLERANCE = 0.10  # ocean highlight width against Blinn-Phong's
 BAKE_TOLERANCE = 2e-5
 
@@ -55,33 +56,42 @@ def journey_material(group, **values):
     return scenes.group_material(group, {**defaults, **values}, output="Shader")
 
 
-@pytest.mark.parametrize("elevation", [10, 30])
-def test_diffuse_contrast_follows_the_twin(journey, elevation):
-    """The twin within 0.02; and the falloff flatter than Lambert's. Measured by the normal the
-    contrast term lights (vertical part squashed): at N.L = 0.2 at least 0.6 of N.L = 0.9. By the
-    surface's own normal that holds under a low sun (10 degrees); under a higher one the squash
-    darkens slopes turned from the sun, which is the contrast Journey is after."""
+@pytest.mark.parametrize("elevation", [10, 30, 60])
+def test_diffuse_contrast_is_the_seeds(journey, elevation):
+    """Seed 004's own diffuse contrast (saturate(4 N'.L), N' not renormalised) within 0.05 with
+    bump-map correction off, as the sand material sets it; the group's two-Toon twin within
+    0.005. With Blender's default correction on, a low sun's render leaves the seed's model."""
     from mathutils import Vector
 
     light = Vector((0.0, math.cos(math.radians(elevation)), math.sin(math.radians(elevation))))
-    rendered = render_sphere(journey_material(journey), light)[..., 0]
+    material = journey_material(journey)
+    material.cycles.use_bump_map_correction = False
+    # Intensity 0..1: the Toon BSDF's radiance times 2 pi (its pdf over the hemisphere).
+    rendered = render_sphere(material, light)[..., 0] * 2 * np.pi
     normals, inside = sphere_normals(RES, SCALE)
     inside &= normals[..., 2] > 0.05  # away from the silhouette's sub-pixel edge
-    expected = twin.journey_diffuse(normals, np.array(light))
-    # Intensity 0..1: the Toon BSDF's radiance times 2 pi (its pdf over the hemisphere).
-    error = np.abs(rendered - expected)[inside] * 2 * np.pi
-    assert error.max() <= DIFFUSE_TOLERANCE, error.max()
-    squashed = normals * np.array([1.0, 1.0, twin.SQUASH])
-    squashed /= np.linalg.norm(squashed, axis=-1, keepdims=True)
-    measures = {"contrast normal": squashed @ np.array(light)}
+    seed = twin.journey_contrast(normals, np.array(light))
+    toons = twin.journey_diffuse(normals, np.array(light)) * 2 * np.pi
+    seed_error = np.abs(rendered - seed)[inside].max()
+    twin_error = np.abs(rendered - toons)[inside].max()
+    n_dot_l = normals @ np.array(light)
+    slopes = inside & (n_dot_l > 0.1) & (n_dot_l < 0.35)
+    print(f"journey diffuse, sun {elevation} deg: against the seed's model {seed_error:.4f}, the "
+          f"twin {twin_error:.4f}; slopes at N.L 0.1-0.35 {rendered[slopes].mean():.3f} (seed "
+          f"{seed[slopes].mean():.3f}, Lambert {n_dot_l[slopes].mean():.3f})")
+    assert seed_error <= DIFFUSE_TOLERANCE
+    assert twin_error <= TWIN_TOLERANCE
+    if elevation == 10:  # flatter than Lambert: a low sun still lights the slopes turned from it
+        assert rendered[slopes].mean() >= 2 * n_dot_l[slopes].mean()
+    material.cycles.use_bump_map_correction = True  # Blender's default: why the material sets it off
+    for obj in list(bpy.data.objects):  # a second sphere, sun and camera of their own
+        bpy.data.objects.remove(obj)
+    corrected = render_sphere(material, light)[..., 0] * 2 * np.pi
+    corrected_error = np.abs(corrected - seed)[inside].max()
+    print(f"with bump-map correction on: against the seed's model {corrected_error:.4f}, slopes "
+          f"{corrected[slopes].mean():.3f}")
     if elevation == 10:
-        measures["surface normal"] = normals @ np.array(light)
-    for label, n_dot_l in measures.items():
-        dim = rendered[inside & (np.abs(n_dot_l - 0.2) < 0.02)].mean()
-        bright = rendered[inside & (np.abs(n_dot_l - 0.9) < 0.02)].mean()
-        print(f"journey diffuse, sun {elevation} deg, N.L of the {label}: brightness at 0.2 is "
-              f"{dim / bright:.2f} of that at 0.9 (Lambert 0.22)")
-        assert dim / bright >= 0.6
+        assert corrected_error > DIFFUSE_TOLERANCE
 
 
 @pytest.mark.parametrize("exponent", [16, 64, 256])

@@ -24,6 +24,7 @@ def test_rerun_updates_instead_of_duplicating(sandscape):
     assert node.inputs["Threshold"].default_value == pytest.approx(0.5)
     assert node.inputs["Roughness"].default_value == pytest.approx(0.2)
     assert plane.active_material.cycles.emission_sampling == "NONE"  # glints light nothing else
+    assert plane.active_material.cycles.use_bump_map_correction  # Physical: Blender's default
     # Switching source rebuilds our material in place, still one of everything.
     bpy.ops.sandscape.add_sand_material(source="IMAGE", image_resolution=16)
     bpy.ops.sandscape.add_sand_material(source="IMAGE", image_resolution=16, seed=3)
@@ -36,6 +37,7 @@ def test_rerun_updates_instead_of_duplicating(sandscape):
     assert len(ours(bpy.data.materials, "sandscape_material")) == 1
     assert sandscape.blender.sand.structure(plane.active_material) == ("JOURNEY", "EMISSION", "PROCEDURAL",
                                                                        False)
+    assert not plane.active_material.cycles.use_bump_map_correction  # the contrast's slopes stay lit
 
 
 def test_users_look_alike_data_is_never_touched(sandscape):
