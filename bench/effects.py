@@ -86,6 +86,7 @@ def removals(bpy, scene, modules):
     def no_dust():
         air = scene.sandscape_atmosphere
         air.density = air.dust_density = 0.0
+        air.use_haze = False
         modules["atmosphere"].apply(scene, air)
 
     return {"footprints": no_prints, "god rays": no_god_rays, "clouds": no_clouds, "glints": no_glints,

@@ -71,6 +71,7 @@ def main(argv=None):
     scene = bpy.context.scene
     air = scene.sandscape_atmosphere
     air.density = air.dust_density = 0.0
+    air.use_haze = False
     air.use_wind = False
     bpy.ops.sandscape.add_atmosphere()  # the same sun and exposure, no dusty air
     scene.render.use_compositing = False

@@ -174,12 +174,14 @@ def ensure_volume(scene, coefficients, low, high, dust=None):
 
     coefficients: per scene unit. dust: None for homogeneous air (cheap), or a dict with
     "scatter" (per unit, grey forward-scattering dust, Henyey-Greenstein "anisotropy") and
-    "field" (Dust Field inputs, or None for no wind-lifted patches). The material holds only
+    "field" (Dust Field inputs, or None for no wind-lifted patches) and "haze" (per unit, the
+    same grains everywhere alike, Koschmieder's aerial perspective). The material holds only
     the branches in use.
     """
     box = own.scene_object(scene, own.DUST_VOLUME)
     dust = dust or {}
-    if float(np.max(coefficients)) <= 0.0 and not dust.get("scatter", 0.0) > 0.0:
+    scatters = dust.get("scatter", 0.0) > 0.0 or dust.get("haze", 0.0) > 0.0
+    if float(np.max(coefficients)) <= 0.0 and not scatters:
         if box is not None:
             own.remove_with_data(box)
         return None
@@ -234,11 +236,18 @@ def _build_volume_material(material, coefficients, dust, scene):
                             inputs={"Color": (1.0, 1.0, 1.0, 1.0), "Anisotropy": dust["anisotropy"]})
         set_density(grains.inputs["Density"], dust["scatter"], "Dust × Dust Field")
         shaders.append(grains.outputs[0])
+    if dust.get("haze", 0.0) > 0:  # everywhere alike: the wind's patches do not carry it
+        haze = h.add_node(tree, "ShaderNodeVolumeScatter", name="Sandscape Haze", label="Haze (Koschmieder)",
+                          phase="HENYEY_GREENSTEIN", inputs={"Color": (1.0, 1.0, 1.0, 1.0),
+                                                              "Anisotropy": dust["anisotropy"],
+                                                              "Density": dust["haze"]})
+        shaders.append(haze.outputs[0])
     volume = shaders[0]
-    if len(shaders) == 2:
-        add = h.add_node(tree, "ShaderNodeAddShader", name="Sandscape Air + Dust")
-        h.link(tree, shaders[0], add.inputs[0])
-        h.link(tree, shaders[1], add.inputs[1])
+    sums = ("Sandscape Air + Dust", "Sandscape + Haze")[:len(shaders) - 1]
+    for name, shader in zip(sums, shaders[1:], strict=True):
+        add = h.add_node(tree, "ShaderNodeAddShader", name=name)
+        h.link(tree, volume, add.inputs[0])
+        h.link(tree, shader, add.inputs[1])
         volume = add.outputs[0]
     h.link(tree, volume, output.inputs["Volume"])
     h.arrange(tree, set_widths=False)
@@ -264,12 +273,15 @@ def apply(scene, settings):
     if settings.use_wind:
         field = {"Wind": tuple(settings.wind), "Scale": settings.dust_scale, "Coverage": settings.coverage,
                  "Softness": settings.softness, "Ground": float(ground), "Falloff": settings.falloff}
+    haze = 0.0
+    if settings.use_haze:
+        haze = air.haze_extinction(settings.visibility)  # per scene unit: the visibility is in them
     dust = {"scatter": settings.dust_density * units.metres_per_unit(scene),
-            "anisotropy": settings.anisotropy, "field": field}
+            "anisotropy": settings.anisotropy, "field": field, "haze": haze}
     # Sized to the shot: a box fitted to the geometry ended in a visible edge (a 4 m slab over
     # the demo's dunes, a glowing square round a lone cube). Wind-lifted dust covers about
     # Coverage of the air, so its haze reaches that much further.
-    extinction = (coefficients + dust["scatter"]) * (settings.coverage if field else 1.0)
+    extinction = (coefficients + dust["scatter"]) * (settings.coverage if field else 1.0) + haze
     bounds = shot_bounds(scene, haze_reach(scene, extinction), settings.margin, ground - settings.margin)
     low, high = bounds or (geometry_low - settings.margin, geometry_high + settings.margin)
     box = ensure_volume(scene, coefficients, low, high, dust)

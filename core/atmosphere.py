@@ -10,6 +10,7 @@ import numpy as np
 
 DEFAULT_WAVELENGTHS = (680.0, 550.0, 440.0)  # nm: red, green, blue
 REFERENCE_WAVELENGTH = 550.0  # nm: the channel whose coefficient equals the set density
+CONTRAST_THRESHOLD = 0.02  # Koschmieder: the eye just tells a dark object from the sky at 2 %
 
 
 class AtmosphereError(ValueError):
@@ -53,6 +54,15 @@ def transmittance(optical_depth):
 def slab_transmittance(coefficients, thickness):
     """Per-channel transmittance through a homogeneous slab: exp(-beta d)."""
     return transmittance(np.asarray(coefficients, dtype=np.float64) * float(thickness))
+
+
+def haze_extinction(visibility):
+    """Koschmieder: the extinction at which far terrain keeps CONTRAST_THRESHOLD of its contrast
+    against the horizon sky at `visibility` (beta = ln(50) / V = 3.912 / V), per unit of 1 / V."""
+    visibility = float(visibility)
+    if not (np.isfinite(visibility) and visibility > 0):
+        raise AtmosphereError(f"visibility must be above 0, got {visibility}")
+    return float(np.log(1.0 / CONTRAST_THRESHOLD)) / visibility
 
 
 def sun_direction(elevation, azimuth):

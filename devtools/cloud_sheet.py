@@ -47,7 +47,7 @@ def render(directory):
         camera.data.clip_end = 1e6
         air = scene.sandscape_atmosphere
         air.sun_elevation, air.sun_azimuth = math.radians(elevation), math.radians(azimuth)
-        air.density = 0.0
+        air.density, air.use_haze = 0.0, False
         readback.cycles_scene(scene, RESOLUTION, SAMPLES)
         bpy.ops.sandscape.add_atmosphere()
         started = time.perf_counter()

@@ -2,7 +2,7 @@
 
 import bpy
 
-from ..blender import atmosphere, ownership
+from ..blender import atmosphere, ownership, units
 from ..core import atmosphere as air
 from ..ui.properties import SandscapeAtmosphereSettings
 from .base import SandscapeOperator, editable_problem, value_problem
@@ -36,7 +36,9 @@ class SANDSCAPE_OT_add_atmosphere(SandscapeOperator, bpy.types.Operator):
             return self.fail(problem)
         done = atmosphere.apply(scene, settings)
         beta = ", ".join(f"{b:.4g}" for b in done["coefficients"])
-        volume = f"dust box '{done['volume'].name}'" if done["volume"] else "no volume (density 0)"
+        volume = f"dust box '{done['volume'].name}'" if done["volume"] else "no volume (nothing scatters)"
+        if done["volume"] and settings.use_haze:
+            volume += f" with haze to {units.length_text(scene, settings.visibility)} visibility"
         replaced = (f"; world '{done['replaced'].name}' kept with a fake user (switch back in World "
                     "properties)" if done["replaced"] else "")
         marching = "; volume ray marching on (biased, faster)" if scene.cycles.volume_biased else ""

@@ -109,7 +109,7 @@ def test_the_camera_sees_the_sun_disc_and_the_lighting_does_not():
     assert abs(ratio - 1.0) < 0.03, ratio  # 1089 pixels at 16 spp: the noise in the mean is under 1 %
 
 
-def test_rerun_updates_and_density_zero_removes_the_volume():
+def test_rerun_updates_and_nothing_scattering_removes_the_volume():
     bpy.ops.mesh.primitive_plane_add(size=10)
     settings = bpy.context.scene.sandscape_atmosphere
     bpy.ops.sandscape.add_atmosphere()
@@ -120,6 +120,9 @@ def test_rerun_updates_and_density_zero_removes_the_volume():
     box = next(o for o in bpy.data.objects if o.get("sandscape_object") == "dust_volume")
     assert tuple(box.scale) == pytest.approx((14.0, 14.0, 4.0))  # the plane plus a 2 m margin
     settings.density = 0.0
+    bpy.ops.sandscape.add_atmosphere()
+    assert box.active_material.node_tree.nodes.get("Sandscape Haze")  # the haze alone keeps the box
+    settings.use_haze = False
     bpy.ops.sandscape.add_atmosphere()
     assert not [o for o in bpy.data.objects if o.get("sandscape_object") == "dust_volume"]
     assert not [m for m in bpy.data.meshes if m.name.startswith("Sandscape Dust")]
@@ -144,6 +147,16 @@ def test_bad_input_is_refused_and_changes_nothing(wavelengths, density):
     settings.wavelengths, settings.density = wavelengths, density
     before = readback.data_snapshot()
     with pytest.raises(RuntimeError, match="avelengths|ensity"):
+        bpy.ops.sandscape.add_atmosphere()
+    assert readback.data_snapshot() == before
+
+
+@pytest.mark.parametrize("visibility", [0.0, -5.0, math.nan, math.inf])
+def test_a_bad_visibility_is_refused_and_changes_nothing(visibility):
+    settings = bpy.context.scene.sandscape_atmosphere
+    settings.visibility = visibility
+    before = readback.data_snapshot()
+    with pytest.raises(RuntimeError, match="isibility"):
         bpy.ops.sandscape.add_atmosphere()
     assert readback.data_snapshot() == before
 
@@ -178,13 +191,17 @@ def test_wind_dust_is_frame_driven_and_absent_when_off():
     bpy.context.scene.frame_set(42)
     assert field.inputs["Frame"].default_value == pytest.approx(42.0, abs=1e-6)
     assert bpy.context.scene.cycles.volume_biased  # ray marching for the noise density
-    assert not [n for n in tree.nodes if n.bl_idname == "ShaderNodeVolumeScatter"]  # no dust: no HG node
+    assert tree.nodes.get("Sandscape Dust Grains") is None  # no dust: no grains' HG node
+    haze = tree.nodes["Sandscape Haze"]  # the haze everywhere alike, not in the wind's patches
+    assert not haze.inputs["Density"].is_linked and haze.inputs["Density"].default_value == pytest.approx(
+        3.912 / 20000.0, rel=1e-3)
     settings.use_wind, settings.dust_density = False, 0.01
     bpy.ops.sandscape.add_atmosphere()
     tree = dust_material().node_tree
     assert not [n for n in tree.nodes if n.label == "Dust Field"]  # homogeneous: no field at all
     assert tree.animation_data is None or not tree.animation_data.drivers
-    assert [n.phase for n in tree.nodes if n.bl_idname == "ShaderNodeVolumeScatter"] == ["HENYEY_GREENSTEIN"]
+    phases = [n.phase for n in tree.nodes if n.bl_idname == "ShaderNodeVolumeScatter"]
+    assert phases == ["HENYEY_GREENSTEIN"] * 2  # dust and haze
 
 
 def lone_cube_dust_box(unit_scale):
@@ -207,10 +224,12 @@ def lone_cube_dust_box(unit_scale):
 @pytest.mark.parametrize("unit_scale", [1.0, 0.01])
 def test_the_dust_box_spans_the_shot_not_the_cube(unit_scale):
     """Out to where the haze lets 1 % through, in every corner of the frame; not the cube's 1 m box
-    (once a glowing square round it). Reference: the Rayleigh law and the camera's frame, here."""
+    (once a glowing square round it). Reference: the Rayleigh law, Koschmieder's haze and the
+    camera's frame."""
     low, high, camera, per_metre = lone_cube_dust_box(unit_scale)
     settings = bpy.context.scene.sandscape_atmosphere
-    extinction = air.rayleigh_coefficients(settings.density, tuple(settings.wavelengths))
+    extinction = np.asarray(air.rayleigh_coefficients(settings.density, tuple(settings.wavelengths)))
+    extinction += air.haze_extinction(settings.visibility / per_metre)  # per metre, as the Rayleigh law
     reach = math.log(100.0) / float(np.min(extinction))  # metres, the clearest channel
     assert 100.0 < reach < 1000.0
     matrix = np.array(camera.matrix_world)

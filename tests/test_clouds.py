@@ -280,7 +280,7 @@ def test_extreme_settings_render_finite(props):
     scene.camera.data.clip_end = 1e6
     readback.cycles_scene(scene, (24, 16), samples=2)
     bpy.ops.mesh.primitive_plane_add(size=100.0)
-    scene.sandscape_atmosphere.density = 0.0
+    scene.sandscape_atmosphere.density, scene.sandscape_atmosphere.use_haze = 0.0, False
     bpy.ops.sandscape.add_atmosphere()
     assert bpy.ops.sandscape.add_clouds(step=400.0, reach=3000.0, **props) == {"FINISHED"}
     pixels = readback.render(scene)

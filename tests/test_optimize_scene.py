@@ -87,7 +87,9 @@ def test_dark_glints_idle_rays_and_bounces(sandscape, wasteful_demo):
     bpy.context.view_layer.objects.active = terrain
     bpy.ops.sandscape.add_sand_material(glints="EMISSION", strength=0.0)  # sparkles turned off
     scene.sandscape_atmosphere.sun_azimuth = math.radians(270.0)  # behind the walker and the camera
-    scene.sandscape_atmosphere.density = scene.sandscape_atmosphere.dust_density = 0.0  # no dust box
+    air = scene.sandscape_atmosphere
+    air.density = air.dust_density = 0.0
+    air.use_haze = False  # no dust box
     bpy.ops.sandscape.add_atmosphere()
     assert bpy.ops.sandscape.add_clouds(coverage=0.0) == {"FINISHED"}  # clear sky: no volume is left
     bpy.ops.sandscape.add_post_effects()

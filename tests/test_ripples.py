@@ -159,7 +159,7 @@ def rippled_ground(wind_angle):
     settings = bpy.context.scene.sandscape_atmosphere
     settings.wind = (4.0 * math.cos(math.radians(wind_angle)), 4.0 * math.sin(math.radians(wind_angle)), 0.0)
     settings.sun_elevation, settings.sun_azimuth = math.radians(20.0), math.radians(90.0 - wind_angle)
-    settings.density, settings.use_wind = 0.0, False
+    settings.density, settings.use_wind, settings.use_haze = 0.0, False, False
     bpy.ops.sandscape.add_atmosphere()
 
 

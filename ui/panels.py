@@ -119,6 +119,7 @@ class SANDSCAPE_PT_footprints(SandscapeSubPanel, bpy.types.Panel):
 ATMOSPHERE_SECTIONS = (
     ("Sun and Air", ("sun_elevation", "sun_azimuth", "sun_from_sky", "set_exposure", "density", "wavelengths",
                      "margin")),
+    ("Haze", ("use_haze", "visibility")),
     ("Dust", ("dust_density", "anisotropy", "use_wind", "wind", "dust_scale", "coverage", "softness",
               "falloff")),
 )

@@ -107,7 +107,7 @@ class SandscapeAtmosphereSettings(bpy.types.PropertyGroup):
         "sun_elevation": (-math.pi / 2, math.pi / 2), "sun_azimuth": (-20 * math.pi, 20 * math.pi),
         "density": (0.0, 1e6), "wavelengths": (100.0, 10_000.0), "dust_density": (0.0, 1e6),
         "anisotropy": (-0.99, 0.99), "wind": (-1e4, 1e4), "dust_scale": (1e-4, 1e5), "coverage": (0.0, 1.0),
-        "softness": (1e-4, 1.0), "falloff": (1e-4, 1e5), "margin": (0.0, 1e6),
+        "softness": (1e-4, 1.0), "falloff": (1e-4, 1e5), "margin": (0.0, 1e6), "visibility": (1.0, 1e7),
     }
 
     sun_elevation: FloatProperty(name="Sun Elevation", default=math.radians(25.0), subtype="ANGLE",
@@ -143,6 +143,12 @@ class SandscapeAtmosphereSettings(bpy.types.PropertyGroup):
     softness: FloatProperty(name="Softness", default=0.08, soft_min=0.001, soft_max=0.5,
                             description="Width of the patch edges")
     falloff: length("falloff_m", "Height Falloff", 1.5, "Height over which dust thins by 1/e", 50.0)
+    use_haze: BoolProperty(name="Haze", default=True,
+                           description="A thin haze through the whole box, not carried in patches: far dunes "
+                           "fade toward the sky as exp(-extinction x distance)")
+    visibility: length("visibility_m", "Visibility", 20000.0, "Distance at which far land keeps 2 % of its "
+                       "contrast against the sky (extinction 3.912 / visibility, Koschmieder): desert haze "
+                       "10-50 km, a dusty afternoon a few km", 100000.0, soft_min=100.0)
     margin: length("margin_m", "Margin", 2.0, "How far the dust box reaches beyond the camera's view "
                    "(the scene, without a camera)", 100.0)
 
