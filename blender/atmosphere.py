@@ -195,6 +195,10 @@ def ensure_volume(scene, coefficients, low, high, dust=None):
         material = own.mark(bpy.data.materials.new("Sandscape Dust"), own.MATERIAL_KEY, own.DUST)
         mesh.materials.append(material)
         box.display_type = "BOUNDS"  # see through it in the viewport
+    # The sun lamp carries the whole sky's extinction already (the sky model's own sun): the box
+    # dims what the camera sees through it, not the light again (its haze took the 6 degree sun
+    # through kilometres of box down to a few per cent, and the sand went grey).
+    box.visible_shadow = False
     box.location = tuple((np.asarray(low) + np.asarray(high)) / 2)
     box.scale = tuple(np.asarray(high) - np.asarray(low))
     _build_volume_material(box.active_material, coefficients, dust, scene)
@@ -230,24 +234,30 @@ def _build_volume_material(material, coefficients, dust, scene):
                               node_tree=h.ensure_group(dust_volume), inputs={"Color": color})
         set_density(air_node.inputs["Density"], strongest, "Air × Dust Field")
         shaders.append(air_node.outputs["Volume"])
-    if dust.get("scatter", 0.0) > 0:
+    haze = dust.get("haze", 0.0)
+    if dust.get("scatter", 0.0) > 0 or haze > 0:
+        # The haze is the same grains everywhere alike (the wind's patches do not carry it), in
+        # the dust's own node: Cycles counts a volume's closures 32 times over, and a third one in
+        # this material went past its 64 and dropped closures from the frame (the glints went).
         grains = h.add_node(tree, "ShaderNodeVolumeScatter", name="Sandscape Dust Grains",
-                            label="Dust (Henyey-Greenstein)", phase="HENYEY_GREENSTEIN",
+                            label="Dust and Haze (Henyey-Greenstein)", phase="HENYEY_GREENSTEIN",
                             inputs={"Color": (1.0, 1.0, 1.0, 1.0), "Anisotropy": dust["anisotropy"]})
-        set_density(grains.inputs["Density"], dust["scatter"], "Dust × Dust Field")
+        if dust.get("scatter", 0.0) > 0:
+            set_density(grains.inputs["Density"], dust["scatter"], "Dust × Dust Field")
+            if haze > 0 and grains.inputs["Density"].is_linked:
+                patches = grains.inputs["Density"].links[0].from_socket
+                h.link(tree, h.math(tree, "ADD", patches, haze, label="+ Haze").outputs[0],
+                       grains.inputs["Density"])
+            else:
+                grains.inputs["Density"].default_value += haze
+        else:
+            grains.inputs["Density"].default_value = haze
         shaders.append(grains.outputs[0])
-    if dust.get("haze", 0.0) > 0:  # everywhere alike: the wind's patches do not carry it
-        haze = h.add_node(tree, "ShaderNodeVolumeScatter", name="Sandscape Haze", label="Haze (Koschmieder)",
-                          phase="HENYEY_GREENSTEIN", inputs={"Color": (1.0, 1.0, 1.0, 1.0),
-                                                              "Anisotropy": dust["anisotropy"],
-                                                              "Density": dust["haze"]})
-        shaders.append(haze.outputs[0])
     volume = shaders[0]
-    sums = ("Sandscape Air + Dust", "Sandscape + Haze")[:len(shaders) - 1]
-    for name, shader in zip(sums, shaders[1:], strict=True):
-        add = h.add_node(tree, "ShaderNodeAddShader", name=name)
-        h.link(tree, volume, add.inputs[0])
-        h.link(tree, shader, add.inputs[1])
+    if len(shaders) == 2:
+        add = h.add_node(tree, "ShaderNodeAddShader", name="Sandscape Air + Dust")
+        h.link(tree, shaders[0], add.inputs[0])
+        h.link(tree, shaders[1], add.inputs[1])
         volume = add.outputs[0]
     h.link(tree, volume, output.inputs["Volume"])
     h.arrange(tree, set_widths=False)

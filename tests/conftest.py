@@ -26,12 +26,14 @@ def empty_file():
 @pytest.fixture(autouse=True)
 def no_traceback(capfd):
     """Bad input gets a report, never a traceback: a Python error inside an operator or a
-    handler only shows on stderr (Blender catches it), so every test's output is searched."""
+    handler only shows on stderr (Blender catches it), so every test's output is searched. So is
+    Cycles' warning that a shader went past its closures: it drops light from the frame."""
     yield
     out, err = capfd.readouterr()
     sys.stdout.write(out)
     sys.stderr.write(err)
     assert "Traceback (most recent call last)" not in out + err, err[-3000:]
+    assert "Maximum number of closures exceeded" not in out + err
 
 
 @pytest.fixture

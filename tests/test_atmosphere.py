@@ -119,9 +119,10 @@ def test_rerun_updates_and_nothing_scattering_removes_the_volume():
     assert sorted(kinds) == ["dust_volume", "sun"] and len(bpy.data.worlds) == 1
     box = next(o for o in bpy.data.objects if o.get("sandscape_object") == "dust_volume")
     assert tuple(box.scale) == pytest.approx((14.0, 14.0, 4.0))  # the plane plus a 2 m margin
+    assert not box.visible_shadow  # the sun lamp carries the sky's extinction: not dimmed twice
     settings.density = 0.0
     bpy.ops.sandscape.add_atmosphere()
-    assert box.active_material.node_tree.nodes.get("Sandscape Haze")  # the haze alone keeps the box
+    assert box.active_material.node_tree.nodes.get("Sandscape Dust Grains")  # the haze alone keeps the box
     settings.use_haze = False
     bpy.ops.sandscape.add_atmosphere()
     assert not [o for o in bpy.data.objects if o.get("sandscape_object") == "dust_volume"]
@@ -191,8 +192,7 @@ def test_wind_dust_is_frame_driven_and_absent_when_off():
     bpy.context.scene.frame_set(42)
     assert field.inputs["Frame"].default_value == pytest.approx(42.0, abs=1e-6)
     assert bpy.context.scene.cycles.volume_biased  # ray marching for the noise density
-    assert tree.nodes.get("Sandscape Dust Grains") is None  # no dust: no grains' HG node
-    haze = tree.nodes["Sandscape Haze"]  # the haze everywhere alike, not in the wind's patches
+    haze = tree.nodes["Sandscape Dust Grains"]  # no dust: the haze alone, everywhere alike
     assert not haze.inputs["Density"].is_linked and haze.inputs["Density"].default_value == pytest.approx(
         3.912 / 20000.0, rel=1e-3)
     settings.use_wind, settings.dust_density = False, 0.01
@@ -201,7 +201,9 @@ def test_wind_dust_is_frame_driven_and_absent_when_off():
     assert not [n for n in tree.nodes if n.label == "Dust Field"]  # homogeneous: no field at all
     assert tree.animation_data is None or not tree.animation_data.drivers
     phases = [n.phase for n in tree.nodes if n.bl_idname == "ShaderNodeVolumeScatter"]
-    assert phases == ["HENYEY_GREENSTEIN"] * 2  # dust and haze
+    assert phases == ["HENYEY_GREENSTEIN"]  # dust and haze in one node: two closures at most
+    grains = tree.nodes["Sandscape Dust Grains"].inputs["Density"]
+    assert grains.default_value == pytest.approx(0.01 + 3.912 / 20000.0, rel=1e-3)
 
 
 def lone_cube_dust_box(unit_scale):
