@@ -428,8 +428,9 @@ def ensure_cut(terrain, frame, low, high):
 # ---------------------------------------------------------------- emit and paint
 
 def sole_from(settings):
+    """The sole, its wall as wide as dry sand crumbles at the set depth (all in scene units)."""
     return painter.Sole(length=settings.foot_length, width=settings.foot_width,
-                        rim_width=settings.rim_width)
+                        edge=painter.wall_width(settings.depth), rim_width=settings.rim_width)
 
 
 def frame_range(scene, settings):

@@ -7,7 +7,9 @@ Channels (the numpy twin of what node group "Sandscape Footprint Height" reads):
   A  sole coverage, 0..1: where any sole pressed the sand (the owner test uses it)
 
 A print is a sole outline (heel circle, toe circle, tangent lines between them: an uneven
-capsule) with a flat bottom, a smooth falloff at the edge and a rim bump outside it.
+capsule) pressed into a flat floor, a wall outside the outline up to the undisturbed sand (dry
+sand crumbles there toward its angle of repose, so the hollow is wider at the top than the sole)
+and a low rim bump beyond the wall's top.
 Edges are never narrower than about a texel, so the image carries no aliasing steps.
 
 Composition, per texel, in birth order (it is associative, so prints go in chunks):
@@ -25,10 +27,15 @@ import numpy as np
 F32 = np.float32
 LOG_FLOOR = -69.0  # log(1e-30): a fully pressed texel keeps no rim, without log(0)
 CHUNK_ENTRIES = 1 << 22  # texel-print pairs per batch: bounds memory at any print count
+REPOSE = np.radians(34.0)  # dry quartz sand's angle of repose: the steepest a crumbled wall stands
+WALL_STEEPNESS = 1.5  # a smoothstep's steepest slope over its mean: a wall this much wider stands at REPOSE
 
 
 class Sole:
-    """Sole shape and profile, in metres. Immutable; `reach` bounds a stamp's influence."""
+    """Sole shape and profile, in metres. Immutable; `reach` bounds a stamp's influence.
+
+    edge: width of the wall from the sole's outline out to the undisturbed sand (wall_width
+    gives the one that stands at the angle of repose for a depth)."""
 
     __slots__ = ("length", "width", "heel_ratio", "edge", "rim_width")
 
@@ -56,7 +63,12 @@ class Sole:
 
     def reach(self, texel=0.0):
         """Distance from the print centre beyond which the stamp is exactly zero."""
-        return self.length / 2 + self.rim_band(texel)
+        return self.length / 2 + self.edge_width(texel) + self.rim_band(texel)
+
+
+def wall_width(depth, repose=REPOSE):
+    """Width of a smoothstep wall down `depth` whose steepest slope is the angle of repose."""
+    return WALL_STEEPNESS * max(float(depth), 0.0) / np.tan(repose)
 
 
 def sole_distance(a, b, sole):
@@ -85,12 +97,14 @@ def smoothstep(edge0, edge1, x):
 
 
 def sole_profile(distance, sole, texel):
-    """Pressed fraction s (0 outside, 1 on the flat bottom) and rim bump (0..1, peak 1)."""
-    pressed = smoothstep(0.0, sole.edge_width(texel), -distance)
+    """Pressed fraction s (1 on the floor inside the outline, falling to 0 across the wall
+    outside it) and rim bump (0..1, peak 1) beyond the wall's top."""
+    wall = sole.edge_width(texel)
+    pressed = 1.0 - smoothstep(0.0, wall, distance)
     band = sole.rim_band(texel)
     if band <= 0:
         return pressed, np.zeros_like(pressed)
-    t = distance / band
+    t = (distance - wall) / band
     rim = np.where((t > 0) & (t < 1), (4.0 * t * (1.0 - t)) ** 2, 0.0)
     # A float32 distance a hair short of the band's end leaves ~1e-13: that is outside the stamp.
     return pressed, np.where(rim > 1e-9, rim, 0.0)
@@ -168,9 +182,9 @@ def paint(centres, forward, lateral, births, depth_scales, region, sole=None, fr
                                                            depth_scales, frame_range)
     if len(order) == 0:
         return out
-    # Each print's box in the plane: the sole's half-length and half-width plus the rim band,
-    # through its (projected) axes. A square of the full reach would hold twice the texels.
-    band = sole.rim_band(texel)
+    # Each print's box in the plane: the sole's half-length and half-width plus the wall and the
+    # rim band, through its (projected) axes. A square of the full reach would hold twice the texels.
+    band = sole.edge_width(texel) + sole.rim_band(texel)
     along, across = sole.length / 2 + band, sole.width / 2 + band
     forward_abs = np.abs(np.asarray(forward, np.float64).reshape(-1, 2))
     lateral_abs = np.abs(np.asarray(lateral, np.float64).reshape(-1, 2))

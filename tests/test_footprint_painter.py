@@ -5,6 +5,8 @@ not from the planner; centres are measured on the painted image as depth-weighte
 centroids (a heel ratio of 1 makes the sole symmetric about its centre).
 """
 
+import math
+
 import numpy as np
 import pytest
 
@@ -46,7 +48,7 @@ def texel_of(region, point):
 
 @pytest.fixture
 def painted():
-    sole = fp.Sole(heel_ratio=1.0)
+    sole = fp.Sole(heel_ratio=1.0, edge=3 * TEXEL)  # the wall's top on a texel edge
     steps, frames = straight_walk()
     forward, lateral = flat_axes(steps["forward"])
     centres = steps["contact"][:, :2]
@@ -86,8 +88,8 @@ def test_depth_and_rim_at_their_analytic_places(painted):
         row, col = texel_of(region, centre)
         assert abs(DEPTH * image[row, col, 0] - DEPTH) < TOLERANCE
         assert abs(image[row, col, 1]) <= CHANNEL_TOLERANCE
-        # Rim peak: half a rim band outside the straight edge, on the side away from the path.
-        offset = sole.width / 2 + sole.rim_band(TEXEL) / 2
+        # Rim peak: half a rim band beyond the wall outside the straight edge, away from the path.
+        offset = sole.width / 2 + sole.edge_width(TEXEL) + sole.rim_band(TEXEL) / 2
         row, col = texel_of(region, centre + (0.0, side * offset))
         assert abs(RIM * image[row, col, 1] - RIM) < TOLERANCE
     assert image[..., 0].max() <= 1.0 and image[..., 1].max() <= 1.0
@@ -101,7 +103,7 @@ def test_zero_outside_the_stamp_radius(painted):
     nearest = np.min([np.hypot(x - cx, y - cy) for cx, cy in steps["contact"][:, :2]], axis=0)
     outside = nearest > sole.reach(TEXEL)
     assert outside.any() and not image[outside].any()
-    flat_bottom = image[nearest < sole.width / 2 - sole.edge, 0]
+    flat_bottom = image[nearest < sole.width / 2 - TEXEL, 0]  # the sole's floor: inside its outline
     assert np.abs(flat_bottom - 1.0).max() <= CHANNEL_TOLERANCE
 
 
@@ -202,3 +204,20 @@ def test_heading_follows_a_circle_sampled_per_frame():
     expected = centre_angle + np.pi / 2
     error = np.angle(np.exp(1j * (steps["heading"] - expected)))
     assert np.abs(np.degrees(error)).max() < 0.01
+
+
+@pytest.mark.parametrize("depth", [0.01, 0.05, 0.12])
+def test_walls_stand_at_the_angle_of_repose(depth):
+    """Dry sand crumbles: across the wall the painted depth falls no steeper than 34 degrees,
+    and reaches it (a wall of the sole's own outline would stand at 76 degrees for 5 cm)."""
+    texel = 0.002
+    sole = fp.Sole(heel_ratio=1.0, edge=fp.wall_width(depth), rim_width=0.0)
+    region = fp.Region(-0.3, -0.01, texel, 300, 10)
+    image = fp.paint(np.array([[0.0, 0.0]]), np.array([[1.0, 0.0]]), np.array([[0.0, 1.0]]),
+                     np.array([1.0]), 1.0, region, sole, (0.0, 2.0))
+    profile = depth * image[5, :, 0].astype(np.float64)  # along the sole's length, through its centre
+    steepest = math.degrees(math.atan(np.abs(np.diff(profile)).max() / texel))
+    print(f"depth {depth * 100:g} cm: wall {fp.wall_width(depth) * 100:.1f} cm wide, "
+          f"steepest {steepest:.2f} deg")
+    assert 33.0 <= steepest <= 34.0
+    assert profile.max() == pytest.approx(depth, rel=1e-6)
