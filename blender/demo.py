@@ -23,10 +23,11 @@ CAMERA_OFFSET = (-4.5, -1.5, 0.9)  # behind, beside and low, metres: the prints 
 CAMERA_CLEARANCE = 0.6  # metres the camera keeps above the sand under it
 CAMERA_SMOOTH_FRAMES = 12  # the lift over a crest eases in and out over about this many frames
 CAMERA_SHIFT = (0.05, 0.05)  # lens shift, not a tilt: the walker low in frame, the low sun in it
-AIR = {"density": 0.003, "dust_density": 0.002, "margin": 20.0}
+# Desert haze: visibility 10-50 km (../shared/look-references.md); the far dunes fade.
+AIR = {"density": 0.003, "dust_density": 0.002, "margin": 20.0, "visibility": 20000.0}
 CLOUDS = {"coverage": 0.4, "seed": 2, "base": 700.0, "thickness": 1200.0, "step": 400.0, "voxel": 50.0,
           "reach": 8000.0}  # low cumulus above the haze; seed 2 leaves the sun clear of them all walk
-PRINTS = {"depth": 0.05, "rim": 0.015}  # metres: soft sand
+PRINTS = {"depth": 0.05, "rim": 0.006}  # metres: loose dry sand, a low soft rim
 SAND = {"Threshold": 0.985, "Glint Size": 0.012, "Facing Power": 4.0, "Strength": 60.0, "Seed": 1.0}
 
 
