@@ -25,8 +25,8 @@ RESOLUTION = (320, 180)
 FRAME = 200
 BLOCK = 4
 BLOCK_CHANGE = 0.05
-# Share of blocks each effect must move (issue 14).
-GOALS = {"footprints": 0.015, "god rays": 0.03, "clouds": 0.05}
+# Share of blocks each effect must move (issue 14; prints and dusty air: issue 25).
+GOALS = {"footprints": 0.02, "god rays": 0.03, "clouds": 0.05, "dusty air": 0.04}
 SAND_HUE = (15.0, 50.0)  # degrees
 SAND_SATURATION = 0.2
 
