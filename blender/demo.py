@@ -25,8 +25,9 @@ CAMERA_SMOOTH_FRAMES = 12  # the lift over a crest eases in and out over about t
 CAMERA_SHIFT = (0.05, 0.05)  # lens shift, not a tilt: the walker low in frame, the low sun in it
 # Desert haze: visibility 10-50 km (../shared/look-references.md); the far dunes fade.
 AIR = {"density": 0.003, "dust_density": 0.002, "margin": 20.0, "visibility": 20000.0}
+# Cumulus based at 1.5 km: the 6 degree sun reaches that height 14 km off, past the 8 km layer.
 CLOUDS = {"coverage": 0.4, "seed": 2, "base": 1500.0, "thickness": 1200.0, "step": 400.0, "voxel": 50.0,
-          "reach": 8000.0}  # cumulus bases at 1.5 km: the 6 degree sun reaches them 14 km off, past the 8 km layer
+          "reach": 8000.0}
 PRINTS = {"depth": 0.05, "rim": 0.006}  # metres: loose dry sand, a low soft rim
 SAND = {"Threshold": 0.985, "Glint Size": 0.012, "Facing Power": 4.0, "Strength": 60.0, "Seed": 1.0}
 
