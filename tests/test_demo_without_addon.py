@@ -116,6 +116,7 @@ def test_committed_demo_opens_and_renders_on_this_blender():
         problems = open_problems()
         committed_links = links()
         committed = small_render(bpy.context.scene)
+        saved_by = tuple(bpy.data.version[:2])
         drivers = sum(len(b.animation_data.drivers) for b in animated_blocks() if b.animation_data)
     assert not problems, problems
     # Every tree a fresh build makes, with every link (a 5.2 file also brings the node tree 5.2
@@ -123,4 +124,11 @@ def test_committed_demo_opens_and_renders_on_this_blender():
     assert {owner: committed_links.get(owner) for owner in fresh_links} == fresh_links
     assert drivers >= 2  # the footprint and dust frame drivers were checked, not skipped
     assert np.isfinite(committed).all()
-    assert np.abs(committed - fresh).max() <= SAME_SCENE_TOLERANCE
+    if saved_by == tuple(bpy.app.version[:2]):
+        assert np.abs(committed - fresh).max() <= SAME_SCENE_TOLERANCE
+    else:
+        # Saved by another Blender, the file renders here with other noise in the haze, which every
+        # pixel marches through (on 5.0: 0.06 % in the mean, one sparkle pixel 0.24 off).
+        difference = np.abs(committed - fresh)[..., :3]
+        assert difference.mean() <= 0.005 * np.abs(fresh[..., :3]).mean()
+        assert np.mean(difference > 0.05 * np.abs(fresh[..., :3]) + SAME_SCENE_TOLERANCE) <= 0.02

@@ -78,6 +78,7 @@ def glinting_ground(sandscape, glints="LIT", **props):
     ground = bpy.context.active_object
     settings = bpy.context.scene.sandscape_atmosphere
     settings.sun_elevation, settings.sun_azimuth, settings.density = SUN_ELEVATION, 0.0, 0.0
+    settings.use_haze = False  # no volume at all: the glints alone
     settings.set_exposure = False
     bpy.ops.sandscape.add_atmosphere()
     bpy.context.view_layer.objects.active = ground
