@@ -242,16 +242,14 @@ def _build_volume_material(material, coefficients, dust, scene):
         grains = h.add_node(tree, "ShaderNodeVolumeScatter", name="Sandscape Dust Grains",
                             label="Dust and Haze (Henyey-Greenstein)", phase="HENYEY_GREENSTEIN",
                             inputs={"Color": (1.0, 1.0, 1.0, 1.0), "Anisotropy": dust["anisotropy"]})
-        if dust.get("scatter", 0.0) > 0:
-            set_density(grains.inputs["Density"], dust["scatter"], "Dust × Dust Field")
-            if haze > 0 and grains.inputs["Density"].is_linked:
-                patches = grains.inputs["Density"].links[0].from_socket
-                h.link(tree, h.math(tree, "ADD", patches, haze, label="+ Haze").outputs[0],
-                       grains.inputs["Density"])
-            else:
-                grains.inputs["Density"].default_value += haze
+        scatter = dust.get("scatter", 0.0)
+        if factor is None or scatter <= 0:
+            grains.inputs["Density"].default_value = scatter + haze
         else:
-            grains.inputs["Density"].default_value = haze
+            patches = h.math(tree, "MULTIPLY", factor, scatter, label="Dust × Dust Field").outputs[0]
+            if haze > 0:
+                patches = h.math(tree, "ADD", patches, haze, label="+ Haze").outputs[0]
+            h.link(tree, patches, grains.inputs["Density"])
         shaders.append(grains.outputs[0])
     volume = shaders[0]
     if len(shaders) == 2:
