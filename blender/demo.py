@@ -87,7 +87,8 @@ def build(context):
     terrain = dunes.build(scene, DUNES, progress)["field"]
     progress.end()
     context.view_layer.objects.active = terrain
-    sand.apply(terrain, {**sand.default_glint_values(), **SAND}, ripple_values=sand.default_ripples(scene))
+    sand.apply(terrain, {**sand.default_glint_values(), **SAND}, ripple_values=sand.default_ripples(scene),
+               scene=scene)
     steps = scene.sandscape_footprints
     steps.terrain = terrain
     steps.walker, path = walker.ensure_walker(scene, terrain, *FRAMES)  # 14 m in 10 s, on the dunes

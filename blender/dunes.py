@@ -136,7 +136,7 @@ def _material(scene, field, ring, wanted):
     material = sand.find_sand_material(field)
     if material is None and wanted:
         material, _ = sand.apply(field, sand.default_glint_values(),
-                                 ripple_values=sand.default_ripples(scene))
+                                 ripple_values=sand.default_ripples(scene), scene=scene)
     if ring is not None:
         ring.data.materials.clear()
         for slot in field.material_slots:

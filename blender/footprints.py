@@ -558,7 +558,8 @@ def paint(scene, settings, progress=None):
     added_material = material is None
     if added_material:
         material = sand.assign_new_material(terrain)
-        sand.update_material(material, sand.default_glint_values(), ripple_values=sand.default_ripples(scene))
+        sand.update_material(material, sand.default_glint_values(), ripple_values=sand.default_ripples(scene),
+                             scene=scene)
     sand.attach_footprints(material, image, frame, {
         "Depth": settings.depth, "Rim": settings.rim, "Frame Start": float(start), "Frame End": float(end),
         "Noise Amount": settings.noise_amount, "Noise Scale": 40.0 * units.metres_per_unit(scene)})

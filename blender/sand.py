@@ -25,7 +25,7 @@ from ..node_groups import (
 )
 from ..node_groups import helper as h
 from . import ownership as own
-from . import units
+from . import sparkle_footprint, units
 
 SAND_COLOR = core_sand.SAND_COLOR
 LOOKS = {"PHYSICAL": physical_sand, "JOURNEY": journey_sand}
@@ -143,25 +143,28 @@ def assign_new_material(obj):
     return material
 
 
-def apply(obj, values, image=None, look="PHYSICAL", glint_mode="LIT", ripple_values=None):
-    """Our sand on the object, added or updated. Returns (material, whether it was added)."""
+def apply(obj, values, image=None, look="PHYSICAL", glint_mode="LIT", ripple_values=None, scene=None):
+    """Our sand on the object, added or updated; its sparkles sized to the pixels of scene's
+    camera (default: the context's scene). Returns (material, whether it was added)."""
     material = find_sand_material(obj)
     added = material is None
     if added:
         material = assign_new_material(obj)
-    update_material(material, values, image, look, glint_mode, ripple_values)
+    update_material(material, values, image, look, glint_mode, ripple_values, scene)
     for unused in [i for i in bpy.data.images if i.get(own.IMAGE_KEY) == own.GLINT_NOISE and i.users == 0]:
         bpy.data.images.remove(unused)  # ours, for another seed or size, and nothing shows it any more
     return material, added
 
 
-def update_material(material, values, image=None, look="PHYSICAL", glint_mode="LIT", ripple_values=None):
+def update_material(material, values, image=None, look="PHYSICAL", glint_mode="LIT", ripple_values=None,
+                    scene=None):
     """Build or update the node tree.
 
     values: GLINT_INPUTS names -> values (those the glint group has are set); image: the glint
     source (None: object-space cells); ripple_values: None for no ripples, else "Wind",
     "Wavelength", "Amplitude" (and optionally the fractions and "Displacement": True for true
-    displacement on top of the shading).
+    displacement on top of the shading); scene: whose camera's pixel sizes the sparkles (default:
+    the context's scene).
     """
     # Glints are tiny highlights: sampling the emissive ground as a light gains nothing and
     # cost +113 % render time instead of +13 % (bench/glints.py). Found by BSDF rays they stay unbiased.
@@ -178,6 +181,7 @@ def update_material(material, values, image=None, look="PHYSICAL", glint_mode="L
             attach_footprints(material, *kept)
     node = glint_node(material)
     _glint_aov(material, node)
+    sparkle_footprint.attach(node, scene if scene is not None else bpy.context.scene)
     if image is not None:
         image_node(material).image = image
     for name in GLINT_INPUTS:

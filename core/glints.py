@@ -1,13 +1,14 @@
 """Numpy twins of the glint node groups, in float32 like Cycles.
 
-glint_shade  <-> node group "Sandscape Glint Shade"
-glints       <-> node group "Sandscape Glints" (object-space cells + shade)
+glint_shade   <-> node group "Sandscape Glint Shade"
+sparkle_cells <-> node group "Sandscape Glint Cells" (cells sized to the pixel's footprint)
+glints        <-> node group "Sandscape Glints" (sparkle cells + shade)
 noise_image / sample_nearest <-> the image source (an Image Texture, Closest, Repeat)
 """
 
 import numpy as np
 
-from .noise_hash import white_noise_4d
+from .noise_hash import white_noise_4d, white_noise_4d_color
 
 F32 = np.float32
 
@@ -28,6 +29,61 @@ def cell_noise(position, size, seed):
     return white_noise_4d(cell, F32(seed))
 
 
+# A sparkle's cell spans from SPARKLE_CELL to twice that of the pixel's footprint on the surface,
+# so a sparkle covers at most one pixel; its edge is Glint Size x 2^level, level within LEVELS.
+SPARKLE_CELL = 0.5
+LEVELS = (-3, 12)
+LEVEL_SEED = 37.0  # each level hashes with Seed + LEVEL_SEED x level: its own set of sparkles
+
+
+def sparkle_level(footprint, size):
+    """The level of the sparkle cells: ceil(log2(SPARKLE_CELL x footprint / size)) within LEVELS,
+    0 where there is no footprint (no camera: one cell per grain, as before filtering)."""
+    footprint = np.asarray(footprint, F32)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratio = np.where(footprint > 0, SPARKLE_CELL * footprint / F32(size), F32(1))
+        level = np.ceil(np.log2(np.maximum(ratio, F32(1e-30)))).astype(F32)
+    return np.clip(level, *LEVELS).astype(F32)
+
+
+MIN_FACING = 0.05  # N.V below this counts as this: a grazing pixel's footprint stops growing
+
+
+def sparkle_cells(footprint, size, threshold, n_dot_v=1.0):
+    """(cell size, threshold, weight) of the sparkle cells for a pixel footprint (object units)
+    where the view meets the surface at n_dot_v.
+
+    A cell of 2^level grains on a side holds a = 4^level of them. A coarse cell (level >= 0)
+    sparkles when one of its grains would: noise above threshold^a; its weight (its grains'
+    share of the light, (1 - threshold) / (1 - threshold^a), at most 1) keeps the sand's mean.
+    A fine cell (level < 0) keeps a grain's count per area, a (1 - threshold) of the cells, and
+    carries the grain's light into its one pixel: weight 4^-level, but no brighter than a whole
+    pixel of mirror (the pixel's area on the surface, footprint^2 / N.V, over the cell's). The
+    larger of the two thresholds is each level's; both weights are 1 at level 0.
+    """
+    level = sparkle_level(footprint, size)
+    grains = np.power(F32(4), level).astype(F32)
+    threshold = F32(threshold)
+    level_threshold = np.maximum(np.power(threshold, grains), F32(1) - (F32(1) - threshold) * grains)
+    share = _safe_divide(F32(1) - threshold, F32(1) - level_threshold)
+    cell_size = (F32(size) * np.power(F32(2), level)).astype(F32)
+    facing = np.maximum(np.abs(np.asarray(n_dot_v, F32)), F32(MIN_FACING))
+    footprint = np.asarray(footprint, F32)
+    pixel_cells = _safe_divide(footprint * footprint, cell_size * cell_size * facing)
+    pixel_cells = np.maximum(pixel_cells, (level >= 0).astype(F32))  # coarse cells: the share alone
+    return cell_size, level_threshold, np.minimum(share, pixel_cells).astype(F32)
+
+
+def sparkle_noise(position, footprint, size, threshold, seed, n_dot_v=1.0):
+    """(noise, tilt, threshold, weight) per point: the sparkle cell's noise and tilt colour at its
+    level, and the level's threshold and weight."""
+    cell_size, level_threshold, weight = sparkle_cells(footprint, size, threshold, n_dot_v)
+    level = sparkle_level(footprint, size)
+    cell = np.floor(_safe_divide(position, cell_size[..., None]) + F32(0.5)).astype(F32)
+    w = (F32(seed) + F32(LEVEL_SEED) * level).astype(F32)
+    return white_noise_4d(cell, w), white_noise_4d_color(cell, w), level_threshold, weight
+
+
 def glint_shade(noise, n_dot_v, threshold, power, color, strength):
     """Returns (mask, glint_color): mask = [noise > threshold] * (N·V)^max(power, 0)."""
     lit = (np.asarray(noise, F32) > F32(threshold)).astype(F32)
@@ -39,9 +95,15 @@ def glint_shade(noise, n_dot_v, threshold, power, color, strength):
     return mask, glint_color
 
 
-def glints(position, n_dot_v, threshold, size, power, color, strength, seed):
-    """Twin of the Sandscape Glints group at object-space positions (..., 3)."""
-    return glint_shade(cell_noise(position, size, seed), n_dot_v, threshold, power, color, strength)
+def glints(position, n_dot_v, threshold, size, power, color, strength, seed, footprint=0.0):
+    """Twin of the Sandscape Glints group at object-space positions (..., 3); footprint: the
+    pixel's footprint there in object units (0: one cell per grain)."""
+    footprint = np.broadcast_to(np.asarray(footprint, F32), np.shape(position)[:-1])
+    noise, _, level_threshold, weight = sparkle_noise(position, footprint, size, threshold, seed, n_dot_v)
+    mask = (noise > level_threshold).astype(F32) * weight
+    with np.errstate(over="ignore", under="ignore", divide="ignore"):
+        mask = mask * np.power(np.asarray(n_dot_v, F32), F32(max(power, 0.0)))
+    return mask, (mask * F32(strength))[..., None] * np.asarray(color, F32)[:3]
 
 
 def noise_image(resolution, seed):

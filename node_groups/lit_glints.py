@@ -1,21 +1,26 @@
-"""Sandscape Lit Glints: glinting grains on object-space cells, as mirror facets lit by real light.
+"""Sandscape Lit Glints: glinting grains as mirror facets lit by real light, in cells sized to the
+pixel's footprint (Sandscape Glint Cells), so a sparkle covers at most one pixel.
 
-The cells are those of Sandscape Glints (Glint Size in the object's own space, Seed), so the
-same grains glint; each cell's noise says whether it can, and its noise colour which way its
-facet leans (Sandscape Glint Facet). Twin: core.sand.glint_cells and glint_facets.
+Each cell's noise says whether it can glint, its noise colour which way its facet leans
+(Sandscape Glint Facet), and its weight how much of a mirror it is (a far cell stands for many
+grains). With Pixel Angle and Pixel Size 0 there is one cell per grain: Sandscape Glints'
+grains. Twin: core.glints.sparkle_noise and core.sand.glint_facets.
 """
 
-from . import glint_facet, glints
+from . import glint_cells, glint_facet
 from . import helper as h
 
 NAME = "Sandscape Lit Glints"
-VERSION = 1
+VERSION = 2
 TREE_TYPE = "ShaderNodeTree"
-DESCRIPTION = ("Sparkling sand lit by the sun: object-space cells of Glint Size, a seeded random value "
-               "per cell, mirror facets above Threshold that glint only where light reaches them")
+DESCRIPTION = ("Sparkling sand lit by the sun: cells of grains sized to the pixel's footprint, a seeded "
+               "random value per cell, mirror facets above Threshold that glint only where light "
+               "reaches them")
 
-INPUTS = {**glint_facet.INPUTS, **glints.CELL_INPUTS}
-SOCKETS = ("Base", "Threshold", "Glint Size", "Facing Power", "Color", "Roughness", "Seed", "Normal")
+INPUTS = {**glint_facet.INPUTS, **glint_cells.INPUTS}
+SOCKETS = ("Base", "Threshold", "Glint Size", "Facing Power", "Color", "Roughness", "Seed", "Normal",
+           "Pixel Angle", "Pixel Size")
+CELL_SOCKETS = ("Glint Size", "Seed", "Threshold", "Pixel Angle", "Pixel Size")
 
 
 def build(tree):
@@ -23,23 +28,23 @@ def build(tree):
     h.add_sockets(tree, SOCKETS, INPUTS, glint_facet.OUTPUTS)
     group_in, group_out = h.group_io(tree)
     inputs = group_in.outputs
-    coords = h.add_node(tree, "ShaderNodeTexCoord")
-    scaled = h.vector_math(tree, "DIVIDE", coords.outputs["Object"], label="Position / Size")
-    h.link(tree, inputs["Glint Size"], scaled.inputs[1])
-    # Cells centred on multiples of the size, as Sandscape Glints: the same grains glint.
-    centred = h.vector_math(tree, "ADD", scaled.outputs[0], (0.5, 0.5, 0.5), label="Centre Cells")
-    cell = h.vector_math(tree, "FLOOR", centred.outputs[0], label="Cell")
-    noise = h.add_node(tree, "ShaderNodeTexWhiteNoise", noise_dimensions="4D")
-    h.link(tree, cell.outputs[0], noise.inputs["Vector"])
-    h.link(tree, inputs["Seed"], noise.inputs["W"])
+    cells = h.add_node(tree, "ShaderNodeGroup", node_tree=h.ensure_group(glint_cells), label="Glint Cells")
+    for name in CELL_SOCKETS:
+        h.link(tree, inputs[name], cells.inputs[name])
     facet = h.add_node(tree, "ShaderNodeGroup", node_tree=h.ensure_group(glint_facet), label="Glint Facet")
-    h.link(tree, noise.outputs["Value"], facet.inputs["Noise"])
-    h.link(tree, noise.outputs["Color"], facet.inputs["Tilt"])
-    for name in ("Base", "Threshold", "Facing Power", "Color", "Roughness", "Normal"):
+    h.link(tree, cells.outputs["Noise"], facet.inputs["Noise"])
+    h.link(tree, cells.outputs["Tilt"], facet.inputs["Tilt"])
+    h.link(tree, cells.outputs["Threshold"], facet.inputs["Threshold"])
+    # A coarse cell is a dimmer mirror: the share of its grains that would glint.
+    color = h.vector_math(tree, "SCALE", inputs["Color"], label="Color × Weight")
+    h.link(tree, cells.outputs["Weight"], color.inputs["Scale"])
+    h.link(tree, color.outputs[0], facet.inputs["Color"])
+    for name in ("Base", "Facing Power", "Roughness", "Normal"):
         h.link(tree, inputs[name], facet.inputs[name])
-    for name in glint_facet.OUTPUTS:
-        h.link(tree, facet.outputs[name], group_out.inputs[name])
-    h.frame(tree, "Object-Space Cells", (coords, scaled, centred, cell))
-    h.frame(tree, "Seeded Noise and Tilt per Cell", (noise,))
-    h.frame(tree, "Mirror Facet", (facet,))
+    mask = h.math(tree, "MULTIPLY", facet.outputs["Mask"], cells.outputs["Weight"], label="Mask × Weight")
+    h.link(tree, facet.outputs["Shader"], group_out.inputs["Shader"])
+    h.link(tree, mask.outputs[0], group_out.inputs["Mask"])
+    h.link(tree, facet.outputs["Facet Normal"], group_out.inputs["Facet Normal"])
+    h.frame(tree, "Cells Sized to the Pixel", (cells,))
+    h.frame(tree, "Mirror Facet", (facet, color, mask))
     h.arrange(tree)

@@ -137,7 +137,7 @@ class SANDSCAPE_OT_add_sand_material(SandscapeOperator, bpy.types.Operator):
             waves = {"Wind": tuple(context.scene.sandscape_atmosphere.wind),
                      **{name: getattr(self, setting) for setting, name in sand.RIPPLE_SETTINGS.items()},
                      "Displacement": self.ripple_displacement}
-        material, added = sand.apply(obj, values, image, self.look, self.glints, waves)
+        material, added = sand.apply(obj, values, image, self.look, self.glints, waves, context.scene)
         look = f"{self.look.title()} sand, {self.glints.lower()} glints" + (", ripples" if waves else "")
         self.report({"INFO"}, f"{'Added' if added else 'Updated'} '{material.name}' on '{obj.name}': {look}")
         return {"FINISHED"}

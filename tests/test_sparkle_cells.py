@@ -1,0 +1,154 @@
+"""Sparkles as pinpoints: glint cells sized to the pixel's footprint (Sandscape Glint Cells).
+
+The twin's promises (a fine cell sparkles as often per area as a grain; a coarse one carries
+its grains' mean light), the group against the twin (bakes), and renders: a sparkle covers about
+one pixel at any resolution, where a grain wider than a pixel made a block before.
+"""
+
+import math
+
+import bpy
+import numpy as np
+import pytest
+
+from core import glints as twin
+from devtools import readback, scenes
+
+SIZE, THRESHOLD = 1 / 16, 0.9
+PINPOINT = 1.5  # pixels per sparkle on average (the pixel filter spreads a point over up to four)
+
+
+def plane_points(res, size):
+    c = readback.pixel_centres(res, -size / 2, size / 2)
+    x, y = np.meshgrid(c, c)
+    return np.stack([x, y, np.zeros_like(x)], axis=-1)
+
+
+# ---------------------------------------------------------------- twin
+
+@pytest.mark.parametrize("level", [-3, -2, -1, 0])
+def test_fine_cells_sparkle_as_often_per_area_as_grains(level):
+    """Cells finer than a grain: as many sparkling cells per square metre as sparkling grains,
+    each as bright in its pixel as a grain covering that pixel."""
+    grain, span = 0.01, 4.0
+    footprint = grain * 2.0 ** level / twin.SPARKLE_CELL * 0.99  # just inside the level
+    assert twin.sparkle_level(footprint, grain) == level
+    cell = grain * 2.0 ** level
+    res = int(round(span / cell))
+    points = plane_points(res, span)  # one point per cell
+    noise, _, threshold, weight = twin.sparkle_noise(points, footprint, grain, THRESHOLD, seed=4)
+    count = int((noise > threshold).sum())
+    expected = (1 - THRESHOLD) * (span / grain) ** 2
+    sigma = math.sqrt(expected)
+    print(f"level {level}: {count} sparkles, expected {expected:.0f} ± {sigma:.0f}")
+    assert abs(count - expected) <= 3 * sigma + 0.01 * expected  # 4^level(1-t) ≈ 1 - t^(4^level)
+    # Its pixel holds the grain's light, at most a whole pixel of mirror (face on: N.V = 1).
+    assert np.allclose(weight * cell**2 / footprint**2, min(1.0, grain**2 / footprint**2), rtol=1e-5)
+
+
+@pytest.mark.parametrize("level", [1, 2, 4])
+def test_coarse_cells_keep_the_mean_glint_light(level):
+    grain = 0.01
+    footprint = grain * 2.0 ** level / twin.SPARKLE_CELL * 0.99
+    cell = grain * 2.0 ** level
+    points = plane_points(200, 200 * cell)
+    noise, _, threshold, weight = twin.sparkle_noise(points, footprint, grain, THRESHOLD, seed=7)
+    light = (noise > threshold) * weight
+    p = 1 - THRESHOLD ** 4.0 ** level
+    sigma = weight.flat[0] * math.sqrt(p * (1 - p) / light.size)
+    print(f"level {level}: mean {light.mean():.4f}, expected {1 - THRESHOLD} ± {sigma:.4f}")
+    assert abs(light.mean() - (1 - THRESHOLD)) <= 3 * sigma + 1e-6
+
+
+def test_no_footprint_is_one_cell_per_grain():
+    points = plane_points(64, 2.0)
+    noise, tilt, threshold, weight = twin.sparkle_noise(points, 0.0, SIZE, THRESHOLD, seed=3)
+    assert np.array_equal(noise, twin.cell_noise(points, SIZE, 3))
+    assert np.all(threshold == np.float32(THRESHOLD)) and np.all(weight == 1.0)
+
+
+# ---------------------------------------------------------------- bakes
+
+@pytest.mark.parametrize("pixel_size", [0.0, 0.004, 0.03, 0.11, 0.9])
+def test_the_group_picks_the_twins_cells(sandscape, pixel_size):
+    """Pixel Size (the orthographic footprint) sets one level per bake; every output as the twin."""
+    group = sandscape.node_groups.helper.ensure_group(sandscape.node_groups.glint_cells)
+    values = {"Glint Size": SIZE, "Seed": 2.0, "Threshold": THRESHOLD, "Pixel Size": pixel_size}
+    plane = readback.uv_plane(2.0)
+    baked = {}
+    for output in ("Noise", "Threshold", "Weight", "Cell Size"):
+        material = scenes.group_material(group, values, output)
+        plane.data.materials.clear()
+        plane.data.materials.append(material)
+        baked[output] = readback.bake_emit(plane, material, 64)[..., 0]
+    noise, _, threshold, weight = twin.sparkle_noise(plane_points(64, 2.0), pixel_size, SIZE, THRESHOLD, 2)
+    cell_size, _, _ = twin.sparkle_cells(pixel_size, SIZE, THRESHOLD)
+    assert np.allclose(baked["Threshold"], threshold, rtol=1e-5, atol=1e-6)
+    assert np.allclose(baked["Weight"], weight, rtol=1e-5, atol=1e-6)
+    assert np.allclose(baked["Cell Size"], cell_size, rtol=1e-6)
+    assert np.mean(np.abs(baked["Noise"] - noise) < 1e-6) >= 0.999  # a cell edge on a bake point may flip
+
+
+# ---------------------------------------------------------------- renders
+
+def sparkling_sand(sandscape, resolution, filtered=True):
+    """Sand on a wide plane under a 30 degree sun ahead, seen from 1.6 m looking down 20 degrees
+    toward it: grains of 4 cm span several pixels near the camera and a fraction far away."""
+    bpy.ops.mesh.primitive_plane_add(size=200)
+    ground = bpy.context.active_object
+    settings = bpy.context.scene.sandscape_atmosphere
+    settings.sun_elevation, settings.sun_azimuth, settings.density = math.radians(30), 0.0, 0.0
+    settings.use_haze, settings.set_exposure = False, False
+    bpy.ops.sandscape.add_atmosphere()
+    readback.cycles_scene(resolution=resolution, samples=16)
+    scenes.camera("PERSP", location=(0.0, -30.0, 1.6), rotation=(math.radians(70), 0.0, 0.0))
+    bpy.context.view_layer.objects.active = ground
+    bpy.ops.sandscape.add_sand_material(ripples=False, threshold=0.97, glint_size=0.04, facing_power=4.0)
+    if not filtered:
+        node = sandscape.blender.sand.glint_node(ground.active_material)
+        for name in ("Pixel Angle", "Pixel Size"):
+            node.inputs[name].driver_remove("default_value")
+            node.inputs[name].default_value = 0.0
+    return readback.render()
+
+
+def sparkles(pixels):
+    """Sparkles (pixels over 4x the median of the 5x5 around) grouped 8-connected: their sizes."""
+    level = pixels[..., :3].mean(-1)
+    pad = np.pad(level, 2, mode="edge")
+    windows = np.lib.stride_tricks.sliding_window_view(pad, (5, 5))
+    bright = level > 4.0 * np.median(windows, axis=(-1, -2))
+    seen, sizes = np.zeros_like(bright), []
+    for start in zip(*np.nonzero(bright), strict=True):
+        if seen[start]:
+            continue
+        stack, size = [start], 0
+        seen[start] = True
+        while stack:
+            y, x = stack.pop()
+            size += 1
+            for dy in (-1, 0, 1):
+                for dx in (-1, 0, 1):
+                    q = (y + dy, x + dx)
+                    inside = 0 <= q[0] < bright.shape[0] and 0 <= q[1] < bright.shape[1]
+                    if inside and bright[q] and not seen[q]:
+                        seen[q] = True
+                        stack.append(q)
+        sizes.append(size)
+    return np.array(sizes)
+
+
+@pytest.mark.parametrize("resolution", [(160, 90), (320, 180)])
+def test_a_sparkle_covers_about_one_pixel(sandscape, resolution):
+    sizes = sparkles(sparkling_sand(sandscape, resolution))
+    print(f"{resolution}: {sizes.size} sparkles, {sizes.mean():.2f} px each, largest {sizes.max()}")
+    assert sizes.size >= 40
+    assert sizes.mean() <= PINPOINT and sizes.max() <= 4
+
+
+def test_without_the_footprint_grains_make_blocks(sandscape):
+    """The same sand with Pixel Angle 0 (one cell per grain) fails the bar above: near grains
+    span several pixels."""
+    sizes = sparkles(sparkling_sand(sandscape, (320, 180), filtered=False))
+    print(f"unfiltered: {sizes.size} sparkles, {sizes.mean():.2f} px each, largest {sizes.max()}")
+    assert sizes.mean() >= PINPOINT + 0.3 and sizes.max() >= 6
