@@ -7,12 +7,11 @@ one pixel at any resolution, where a grain wider than a pixel made a block befor
 
 import math
 
-import bpy
 import numpy as np
 import pytest
 
 from core import glints as twin
-from devtools import readback, scenes
+from devtools import readback, scenes, sparkles
 
 SIZE, THRESHOLD = 1 / 16, 0.9
 PINPOINT = 1.5  # pixels per sparkle on average (the pixel filter spreads a point over up to four)
@@ -91,56 +90,9 @@ def test_the_group_picks_the_twins_cells(sandscape, pixel_size):
 
 # ---------------------------------------------------------------- renders
 
-def sparkling_sand(sandscape, resolution, filtered=True):
-    """Sand on a wide plane under a 30 degree sun ahead, seen from 1.6 m looking down 20 degrees
-    toward it: grains of 4 cm span several pixels near the camera and a fraction far away."""
-    bpy.ops.mesh.primitive_plane_add(size=200)
-    ground = bpy.context.active_object
-    settings = bpy.context.scene.sandscape_atmosphere
-    settings.sun_elevation, settings.sun_azimuth, settings.density = math.radians(30), 0.0, 0.0
-    settings.use_haze, settings.set_exposure = False, False
-    bpy.ops.sandscape.add_atmosphere()
-    readback.cycles_scene(resolution=resolution, samples=16)
-    scenes.camera("PERSP", location=(0.0, -30.0, 1.6), rotation=(math.radians(70), 0.0, 0.0))
-    bpy.context.view_layer.objects.active = ground
-    bpy.ops.sandscape.add_sand_material(ripples=False, threshold=0.97, glint_size=0.04, facing_power=4.0)
-    if not filtered:
-        node = sandscape.blender.sand.glint_node(ground.active_material)
-        for name in ("Pixel Angle", "Pixel Size"):
-            node.inputs[name].driver_remove("default_value")
-            node.inputs[name].default_value = 0.0
-    return readback.render()
-
-
-def sparkles(pixels):
-    """Sparkles (pixels over 4x the median of the 5x5 around) grouped 8-connected: their sizes."""
-    level = pixels[..., :3].mean(-1)
-    pad = np.pad(level, 2, mode="edge")
-    windows = np.lib.stride_tricks.sliding_window_view(pad, (5, 5))
-    bright = level > 4.0 * np.median(windows, axis=(-1, -2))
-    seen, sizes = np.zeros_like(bright), []
-    for start in zip(*np.nonzero(bright), strict=True):
-        if seen[start]:
-            continue
-        stack, size = [start], 0
-        seen[start] = True
-        while stack:
-            y, x = stack.pop()
-            size += 1
-            for dy in (-1, 0, 1):
-                for dx in (-1, 0, 1):
-                    q = (y + dy, x + dx)
-                    inside = 0 <= q[0] < bright.shape[0] and 0 <= q[1] < bright.shape[1]
-                    if inside and bright[q] and not seen[q]:
-                        seen[q] = True
-                        stack.append(q)
-        sizes.append(size)
-    return np.array(sizes)
-
-
 @pytest.mark.parametrize("resolution", [(160, 90), (320, 180)])
 def test_a_sparkle_covers_about_one_pixel(sandscape, resolution):
-    sizes = sparkles(sparkling_sand(sandscape, resolution))
+    sizes = sparkles.sparkle_sizes(readback.render(sparkles.sparkling_sand(sandscape, resolution)))
     print(f"{resolution}: {sizes.size} sparkles, {sizes.mean():.2f} px each, largest {sizes.max()}")
     assert sizes.size >= 40
     assert sizes.mean() <= PINPOINT and sizes.max() <= 4
@@ -149,6 +101,19 @@ def test_a_sparkle_covers_about_one_pixel(sandscape, resolution):
 def test_without_the_footprint_grains_make_blocks(sandscape):
     """The same sand with Pixel Angle 0 (one cell per grain) fails the bar above: near grains
     span several pixels."""
-    sizes = sparkles(sparkling_sand(sandscape, (320, 180), filtered=False))
+    sizes = sparkles.sparkle_sizes(readback.render(sparkles.sparkling_sand(sandscape, (320, 180), False)))
     print(f"unfiltered: {sizes.size} sparkles, {sizes.mean():.2f} px each, largest {sizes.max()}")
     assert sizes.mean() >= PINPOINT + 0.3 and sizes.max() >= 6
+
+
+def test_in_shade_a_facet_mirrors_the_sky_no_brighter_than_sunlit_sand(sandscape):
+    """A grain's light carried into one pixel must not make stars of the facets that mirror the
+    sky: in the roof's shadow no pixel outshines the sunlit sand's median."""
+    pixels = readback.render(sparkles.sparkling_sand(sandscape, (320, 180), shade_left=True))
+    level = pixels[..., :3].mean(-1)
+    shaded, sunlit = level[:, 8:120], level[:, 200:]
+    lit_sparkles = sparkles.sparkle_pixels(pixels)[:, 200:].sum()
+    print(f"shade: brightest {shaded.max():.3f}, median {np.median(shaded):.3f}; sunlit median "
+          f"{np.median(sunlit):.3f}, {lit_sparkles} sparkle pixels")
+    assert lit_sparkles >= 20  # the sun's side still sparkles
+    assert shaded.max() <= np.median(sunlit)
