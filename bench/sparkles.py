@@ -4,9 +4,10 @@ with glint cells sized to the pixel's footprint (filtered) and with one cell per
 Scene: devtools.sparkles.sparkling_sand (a wide plane of sand, grains of 4 cm, a 30 degree sun
 ahead, the camera 1.6 m up looking 20 degrees down). Sizes: sparkle pixels (over 4x the 5x5
 median) grouped 8-connected, at 640x360 and 1280x720, 16 spp; the glints-off row counts what the
-measure finds without glints. Convergence: display RMSE (x 2^exposure clipped at white) against
-a 1024 spp render of another seed, over the pixels where that reference with glints differs from
-one without by more than 0.05, at 160x90. Appends both tables to bench/RESULTS.md.
+measure finds without glints. Convergence: RMSE of display values (linear scaled so the bare
+sand's median is 0.5, clipped at 1) against a 1024 spp render of another seed, over the pixels
+where that reference with glints differs from one without by more than 0.05, at 160x90.
+Appends both tables to bench/RESULTS.md.
 
 Run: .venv/bin/python bench/sparkles.py [--no-append]
 """
@@ -48,12 +49,12 @@ def main(argv=None):
             sandscape.blender.sand.glint_node(material).inputs["Threshold"].default_value = 1.0
         started = time.perf_counter()
         pixels = readback.render(scene)
-        return pixels, time.perf_counter() - started, scene.view_settings.exposure
+        return pixels, time.perf_counter() - started
 
     size_rows = []
     for resolution in SIZES:
         for mode in ("filtered", "unfiltered", "off"):
-            pixels, seconds, _ = render(resolution, mode)
+            pixels, seconds = render(resolution, mode)
             found = sparkles.sparkle_sizes(pixels)
             mean = f"{found.mean():.2f}" if found.size else "-"
             single = f"{np.mean(found == 1):.0%}" if found.size else "-"
@@ -65,15 +66,17 @@ def main(argv=None):
 
     rmse_rows = []
     for mode in ("filtered", "unfiltered"):
-        reference, _, exposure = render(CONVERGENCE, mode, REFERENCE_SPP, seed=99)
-        bare, _, _ = render(CONVERGENCE, "off", REFERENCE_SPP, seed=99)
-        scale = 2.0 ** exposure
-        shown = np.abs(np.minimum(reference[..., :3] * scale, 1) - np.minimum(bare[..., :3] * scale, 1))
-        glints = shown.max(-1) > GLINT_DIFFERENCE
+        reference, _ = render(CONVERGENCE, mode, REFERENCE_SPP, seed=99)
+        bare, _ = render(CONVERGENCE, "off", REFERENCE_SPP, seed=99)
+        # The scene keeps exposure 0: display values with the bare sand's median at 0.5.
+        scale = 0.5 / float(np.median(bare[..., :3]))
+        reference, bare = reference[..., :3] * scale, bare[..., :3] * scale
+        glints = np.abs(np.minimum(reference, 1) - np.minimum(bare, 1)).max(-1) > GLINT_DIFFERENCE
         for spp in SPP:
-            pixels, seconds, _ = render(CONVERGENCE, mode, spp)
-            glint = results.display_rmse(pixels[glints][..., :3], reference[glints][..., :3], exposure)
-            frame = results.display_rmse(pixels[..., :3], reference[..., :3], exposure)
+            pixels, seconds = render(CONVERGENCE, mode, spp)
+            pixels = pixels[..., :3] * scale
+            glint = results.clipped_rmse(pixels[glints], reference[glints], 1.0)
+            frame = results.clipped_rmse(pixels, reference, 1.0)
             share = f"{glints.mean():.2%}"
             rmse_rows.append(f"| {mode} | {spp} | {seconds:.2f} | {glint:.4f} | {frame:.4f} | {share} |")
             print(rmse_rows[-1], flush=True)

@@ -32,7 +32,7 @@ def cell_noise(position, size, seed):
 # A sparkle's cell spans from SPARKLE_CELL to twice that of the pixel's footprint on the surface,
 # so a sparkle covers at most one pixel; its edge is Glint Size x 2^level, level within LEVELS.
 SPARKLE_CELL = 0.5
-LEVELS = (-3, 12)
+LEVELS = (-6, 12)
 LEVEL_SEED = 37.0  # each level hashes with Seed + LEVEL_SEED x level: its own set of sparkles
 
 
