@@ -19,7 +19,7 @@ import numpy as np
 REPO = pathlib.Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(REPO))
 
-from devtools import results, session  # noqa: E402
+from devtools import look, results, session  # noqa: E402
 
 RESOLUTION = (320, 180)
 FRAME = 200
@@ -40,27 +40,6 @@ def block_change(on, off, block=BLOCK):
         return tiles.mean(axis=(1, 3))
 
     return float(np.mean(np.abs(means(on) - means(off)).max(axis=-1) > BLOCK_CHANGE))
-
-
-def hue_saturation(rgb):
-    """HSV hue in degrees and saturation of display RGB in 0..1, vectorised."""
-    high, low = rgb.max(axis=-1), rgb.min(axis=-1)
-    span = np.where(high > low, high - low, 1.0)
-    r, g, b = np.moveaxis(rgb, -1, 0)
-    hue = np.where(high == r, (g - b) / span % 6.0,
-                   np.where(high == g, (b - r) / span + 2.0, (r - g) / span + 4.0))
-    hue = np.where(high > low, hue * 60.0, 0.0)
-    saturation = np.where(high > 0, (high - low) / np.where(high > 0, high, 1.0), 0.0)
-    return hue, saturation
-
-
-def lit_lower_half(pixels):
-    """Median hue and saturation of the lower half's brighter half (rows bottom-up: the first half)."""
-    lower = pixels[: pixels.shape[0] // 2, :, :3].reshape(-1, 3)
-    value = lower.max(axis=-1)
-    lit = lower[value >= np.median(value)]
-    hue, saturation = hue_saturation(lit)
-    return float(np.median(hue)), float(np.median(saturation))
 
 
 def removals(bpy, scene, modules):
@@ -148,7 +127,7 @@ def main(argv=None):
     full = readback.render_display(scene, out / "full.png")
     seconds = time.perf_counter() - started
     samples = scene.cycles.samples
-    hue, saturation = lit_lower_half(full)
+    hue, saturation = look.lit_lower_half(full)
     rows, sheet = [], []
     for name in args.only or list(removals(bpy, scene, modules)):
         scene = build_demo(bpy, args.samples, args.frame)

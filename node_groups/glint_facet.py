@@ -11,7 +11,7 @@ from ..core import sand
 from . import helper as h
 
 NAME = "Sandscape Glint Facet"
-VERSION = 1
+VERSION = 2
 TREE_TYPE = "ShaderNodeTree"
 DESCRIPTION = ("A glinting grain as a mirror facet: Noise above Threshold shows a sharp glossy facet "
                "tilted by Tilt within the spread Facing Power allows; other grains show Base")
@@ -33,6 +33,8 @@ INPUTS = {  # name -> (type, description, default, min, max, subtype); append on
                   "about 5 degrees, so glints hold still when the camera moves", 0.3, 0.0, 1.0, "FACTOR"),
     "Normal": ("NodeSocketVector", "Surface normal the facets lean from (unlinked: the shading normal)",
                (0.0, 0.0, 0.0), None, None, h.SURFACE_NORMAL),
+    "Coverage": ("NodeSocketFloat", "Share of a glinting grain's area that is mirror (a coarse cell that "
+                 "stands for many grains is mostly sand)", 1.0, 0.0, 1.0, "FACTOR"),
 }
 OUTPUTS = {
     "Shader": ("NodeSocketShader", "Base, with glinting grains as mirror facets"),
@@ -74,8 +76,9 @@ def build(tree):
     h.link(tree, inputs["Color"], mirror.inputs["Color"])
     h.link(tree, inputs["Roughness"], mirror.inputs["Roughness"])
     h.link(tree, facet.outputs[0], mirror.inputs["Normal"])
+    covered = h.math(tree, "MULTIPLY", lit.outputs[0], inputs["Coverage"], label="× Coverage")
     mix = h.add_node(tree, "ShaderNodeMixShader", label="Base or Facet")
-    h.link(tree, lit.outputs[0], mix.inputs["Fac"])
+    h.link(tree, covered.outputs[0], mix.inputs["Fac"])
     h.link(tree, inputs["Base"], mix.inputs[1])
     h.link(tree, mirror.outputs[0], mix.inputs[2])
 
@@ -86,5 +89,5 @@ def build(tree):
     h.frame(tree, "Which Grains", (lit,))
     h.frame(tree, "How Far a Facet Leans", (power, inverse, half_cos, cosine, squared, sine_sq, sine, spread))
     h.frame(tree, "Facet", (centred, up, upright, sideways, lean, tilted, facet, mirror))
-    h.frame(tree, "Mirror on the Grain", (mix,))
+    h.frame(tree, "Mirror on the Grain", (covered, mix))
     h.arrange(tree)
