@@ -65,6 +65,8 @@ def main(argv=None):
     parser.add_argument("--axes", action="store_true", help="also sweep the preview preset's other knobs")
     parser.add_argument("--noise", action="store_true",
                         help="only the noise rows (four seeds of the demo still), about 5 minutes")
+    parser.add_argument("--noise-frames", type=int, nargs="+", default=[NOISE_FRAME],
+                        help="the demo frames the noise rows are measured on")
     parser.add_argument("--no-append", action="store_true")
     args = parser.parse_args(argv)
     root = session.isolate()
@@ -80,10 +82,13 @@ def main(argv=None):
     bpy.ops.sandscape.build_demo_scene()
     scene = bpy.context.scene
     scene.render.resolution_percentage = 100
-    noise = noise_rows(readback, scene, presets)
+    tables = []
+    for frame in args.noise_frames:
+        tables += noise_table(noise_rows(readback, scene, presets, frame), frame)
     if args.noise:
-        results.publish([results.heading("Quality, noise rows", ["--noise"]), *noise_table(noise)],
-                        append=not args.no_append)
+        flags = ["--noise"] + (["--noise-frames", *map(str, args.noise_frames)]
+                               if args.noise_frames != [NOISE_FRAME] else [])
+        results.publish([results.heading("Quality, noise rows", flags), *tables], append=not args.no_append)
         return
     scene.render.resolution_x, scene.render.resolution_y = RESOLUTION
     scene.frame_set(FRAME)
@@ -154,15 +159,15 @@ def main(argv=None):
             versus += (f"; the defaults need {equal:.1f} s for this RMSE: {equal / seconds:.1f}x faster"
                        if equal else "; outside the measured defaults curve")
         lines.append(f"| {kind} | {label} | {seconds:.2f} | {error:.5f} | {versus} |")
-    lines += ["", *noise_table(noise)]
+    lines += ["", *tables]
     results.publish(lines, append=not args.no_append)
     plot(rows, REPO / "bench" / "quality.png")
 
 
-def noise_rows(readback, scene, presets):
-    """The noise a viewer sees: seeds of the demo's still frame at the size the README shows."""
+def noise_rows(readback, scene, presets, frame=NOISE_FRAME):
+    """The noise a viewer sees: seeds of a demo frame at the size the README shows."""
     scene.render.resolution_x, scene.render.resolution_y = NOISE_RESOLUTION
-    scene.frame_set(NOISE_FRAME)
+    scene.frame_set(frame)
     plain = dict(presets.PRESETS["PREVIEW"], samples=16, **{presets.DENOISE: False})
     noise = [("plain 16 spp, raw", *noise_sigma(readback, scene, plain, presets))]
     for name in ("DRAFT", "PREVIEW"):  # Final's two renders would double the bench's time
@@ -172,16 +177,16 @@ def noise_rows(readback, scene, presets):
     return noise
 
 
-def noise_table(noise):
+def noise_table(noise, frame=NOISE_FRAME):
     """The noise rows as RESULTS.md lines: a caption and a table."""
-    return [f"{results.machine()}. Noise: demo frame {NOISE_FRAME} at {NOISE_RESOLUTION[0]}x"
+    return [f"{results.machine()}. Noise: demo frame {frame} at {NOISE_RESOLUTION[0]}x"
             f"{NOISE_RESOLUTION[1]}, sigma of display values from two seeds (std of the difference / "
             f"sqrt 2, 16-bit PNG): seeds 0 and 1, and the mean over the pairs of seeds {NOISE_SEEDS}; "
             "s is the mean render time.\n",
             "| render | s | sigma, seeds 0 and 1 | sigma, mean of pairs | time vs plain 16 spp |",
             "|---|---|---|---|---|",
             *(f"| {label} | {seconds:.1f} | {sigma:.4f} | {mean:.4f} | {seconds / noise[0][1]:.1f}x |"
-              for label, seconds, sigma, mean in noise)]
+              for label, seconds, sigma, mean in noise), ""]
 
 
 def noise_sigma(readback, scene, settings, presets):

@@ -4,7 +4,19 @@ Sandscape Glint Cells sizes its cells to a pixel's footprint; these drivers keep
 group's Pixel Angle (perspective) and Pixel Size (orthographic) equal to what one pixel of the
 scene's active camera spans at the render resolution. They are simple expressions: a farm
 evaluates them with Python auto-run off, and they follow a new lens, resolution or camera.
+
+A driver evaluated while the scene had no camera is marked invalid and Blender skips it until
+the file is reloaded or the driver edited: so the sand would render with one cell per grain in
+the session where the camera came after the sand. A depsgraph handler re-arms such drivers once
+the scene has a camera (a check of our sand materials' drivers; nothing while a render runs).
 """
+
+import math
+
+import bpy
+from bpy.app.handlers import persistent
+
+from . import ownership as own
 
 SOCKETS = ("Pixel Angle", "Pixel Size")
 # The pixels the camera's angle (or orthographic scale) spans: the larger side when the sensor
@@ -39,14 +51,51 @@ def attach(node, scene):
             target = variable.targets[0]
             target.id_type, target.id, target.data_path = "SCENE", scene, path
         driver.expression = expression
+        driver.is_valid = True
         driven += 1
     return driven
 
 
+def rearm(scenes=None):
+    """Re-enable our sparkle drivers that Blender marked invalid while their scene had no camera,
+    where it has one now. Returns how many were re-armed."""
+    rearmed = 0
+    expressions = set(EXPRESSIONS.values())
+    for material in bpy.data.materials:
+        tree = material.node_tree
+        if material.get(own.MATERIAL_KEY) != own.SAND or tree is None or tree.animation_data is None:
+            continue
+        for curve in tree.animation_data.drivers:
+            driver = curve.driver
+            if driver.is_valid or driver.expression not in expressions or not driver.variables:
+                continue
+            scene = driver.variables[0].targets[0].id
+            if scene is None or scene.camera is None or (scenes is not None and scene not in scenes):
+                continue
+            driver.expression = driver.expression  # an edit rebuilds its relations
+            driver.is_valid = True
+            rearmed += 1
+    return rearmed
+
+
+@persistent
+def _rearm_after_update(scene, _depsgraph=None):
+    if not bpy.app.is_job_running("RENDER") and scene.camera is not None:
+        rearm([scene])
+
+
+def register():
+    if _rearm_after_update not in bpy.app.handlers.depsgraph_update_post:
+        bpy.app.handlers.depsgraph_update_post.append(_rearm_after_update)
+
+
+def unregister():
+    if _rearm_after_update in bpy.app.handlers.depsgraph_update_post:
+        bpy.app.handlers.depsgraph_update_post.remove(_rearm_after_update)
+
+
 def pixel_angle(scene):
     """What the Pixel Angle driver gives, in Python (tests and benches)."""
-    import math
-
     camera, render = scene.camera.data, scene.render
     fits = {"AUTO": max(render.resolution_x, render.resolution_y), "HORIZONTAL": render.resolution_x,
             "VERTICAL": render.resolution_y}

@@ -7,6 +7,7 @@ one pixel at any resolution, where a grain wider than a pixel made a block befor
 
 import math
 
+import bpy
 import numpy as np
 import pytest
 
@@ -119,3 +120,25 @@ def test_in_shade_a_facet_mirrors_the_sky_no_brighter_than_sunlit_sand(sandscape
           f"{np.median(sunlit):.3f}, {lit_sparkles} sparkle pixels")
     assert lit_sparkles >= 15  # the sun's side still sparkles
     assert shaded.max() <= SKY_MIRROR * np.median(sunlit)
+
+
+def test_sand_made_before_the_camera_follows_the_camera_added_after(sandscape):
+    """Blender skips a driver that failed once (no camera yet) until the file is reloaded: the
+    sparkle drivers are re-armed when the scene gets its camera, and follow a lens change."""
+    bpy.ops.mesh.primitive_plane_add(size=10)
+    ground = bpy.context.active_object
+    assert bpy.context.scene.camera is None
+    assert bpy.ops.sandscape.add_sand_material(ripples=False) == {"FINISHED"}
+    bpy.context.view_layer.update()
+    camera = scenes.camera("PERSP", location=(0.0, -5.0, 2.0), rotation=(math.radians(70), 0.0, 0.0))
+    scene = readback.cycles_scene(resolution=(200, 100))
+    bpy.context.view_layer.update()
+    bpy.context.view_layer.update()  # the first update re-arms, the second evaluates
+    node = sandscape.blender.sand.glint_node(ground.active_material)
+    expected = sandscape.blender.sparkle_footprint.pixel_angle(scene)
+    assert node.inputs["Pixel Angle"].default_value == pytest.approx(expected, rel=1e-5)
+    camera.data.lens = 100.0
+    bpy.context.view_layer.update()
+    assert node.inputs["Pixel Angle"].default_value == pytest.approx(
+        sandscape.blender.sparkle_footprint.pixel_angle(scene), rel=1e-5)
+    assert sandscape.blender.sparkle_footprint.pixel_angle(scene) < expected / 1.9  # 50 mm to 100 mm
