@@ -127,6 +127,28 @@ def glints_kept_after_camera_move(camera_obj, glints_in_render, width, height, e
     return b[row, col][settled].mean()
 
 
+def sparkles_kept_after_camera_move(camera_obj, sparkles_in_render, width, height, enough):
+    """For one-pixel sparkles: (share of the sparkle pixels of a render with a sparkle pixel
+    within one pixel of where their ground point lands after the camera moves 5 cm and turns 1
+    degree, the same share for any pixel: what chance alone gives)."""
+    a = sparkles_in_render()
+    origins, directions = camera_rays(camera_obj, width, height)
+    camera_obj.location.x += 0.05
+    camera_obj.rotation_euler.z -= np.radians(1.0)
+    bpy.context.view_layer.update()
+    b = sparkles_in_render()
+    t = -origins[..., 2] / directions[..., 2]
+    col, row = project(camera_obj, origins + t[..., None] * directions, width, height)
+    col, row = np.floor(col).astype(int), np.floor(row).astype(int)
+    inside = a & (col >= 1) & (col < width - 1) & (row >= 1) & (row < height - 1)
+    assert inside.sum() > enough, "too few sparkle pixels to judge"
+    near = np.zeros_like(b)
+    for dy in (-1, 0, 1):
+        for dx in (-1, 0, 1):
+            near[1:-1, 1:-1] |= b[1 + dy:height - 1 + dy, 1 + dx:width - 1 + dx]
+    return float(near[row[inside], col[inside]].mean()), float(near[1:-1, 1:-1].mean())
+
+
 def height_field(size, subdivisions, height=None, name="Terrain"):
     """A square grid mesh of `size` metres centred on the origin, z = height(x, y) (vectorised), UV 0..1."""
     axis = np.linspace(-size / 2, size / 2, subdivisions + 1)

@@ -89,7 +89,7 @@ def test_cut_and_patch_share_every_face_once(sandscape, walk):
 def test_frame_driver_runs_without_python_auto_run(sandscape, walk):
     bpy.ops.sandscape.paint_footprints()
     material = walk.terrain.active_material
-    fcurve = material.node_tree.animation_data.drivers[0]
+    fcurve = next(c for c in material.node_tree.animation_data.drivers if "Footprints" in c.data_path)
     assert fcurve.driver.expression == "frame" and fcurve.driver.is_simple_expression
     path = pathlib.Path(tempfile.mkdtemp()) / "walk.blend"
     bpy.ops.wm.save_as_mainfile(filepath=str(path), compress=True)

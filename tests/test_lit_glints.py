@@ -123,14 +123,14 @@ def test_emission_glints_shine_in_the_shade_too(sandscape):
 
 
 def test_lit_glints_stay_on_the_sand_when_the_camera_moves(sandscape):
-    """As test_glints_stability: each glint pixel of A traced to the ground, projected into B
-    (camera moved 5 cm and turned 1 degree); pixels straddling a glint edge in B are left out."""
-    glinting_ground(sandscape, threshold=0.7, glint_size=0.1, facing_power=64.0)
+    """Each sparkle pixel of A traced to the ground and projected into B (camera moved 5 cm and
+    turned 1 degree): a sparkle of B lies within a pixel of it (sparkles are single pixels, and a
+    sub-pixel sparkle may fall in either neighbour), far more often than chance."""
+    glinting_ground(sandscape, threshold=0.9, glint_size=0.1, facing_power=64.0)
     width, height = 128, 96
-    readback.cycles_scene(resolution=(width, height), samples=4)
-    scenes.sharp_pixels()
+    readback.cycles_scene(resolution=(width, height), samples=16)
     cam = scenes.camera("PERSP", location=(0.0, -5.0, 5.0), rotation=(math.radians(45), 0.0, 0.0))
-    kept = scenes.glints_kept_after_camera_move(cam, lambda: glint_pixels(readback.render()), width, height,
-                                                enough=100)
-    print(f"lit glints kept after the camera move: {kept:.1%}")
-    assert kept >= 0.95
+    kept, chance = scenes.sparkles_kept_after_camera_move(cam, lambda: glint_pixels(readback.render()),
+                                                          width, height, enough=100)
+    print(f"lit glints kept after the camera move: {kept:.1%} (chance {chance:.1%})")
+    assert kept >= 0.85 and kept >= 4 * chance
