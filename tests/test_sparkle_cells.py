@@ -31,11 +31,11 @@ def plane_points(res, size):
 def test_fine_cells_sparkle_as_often_per_area_as_grains(level):
     """Cells finer than a grain: as many sparkling cells per square metre as sparkling grains,
     each as bright in its pixel as a grain covering that pixel."""
-    grain, span = 0.01, 4.0
+    grain, res = 0.01, 500  # 500 x 500 cells of the level
     footprint = grain * 2.0 ** level / twin.SPARKLE_CELL * 0.99  # just inside the level
     assert twin.sparkle_level(footprint, grain) == level
     cell = grain * 2.0 ** level
-    res = int(round(span / cell))
+    span = res * cell
     points = plane_points(res, span)  # one point per cell
     noise, _, threshold, weight = twin.sparkle_noise(points, footprint, grain, THRESHOLD, seed=4)
     count = int((noise > threshold).sum())
