@@ -249,7 +249,7 @@ def slider_cases():
     cases = [{name: value} for name, pair in ends.items() for value in pair if value != defaults[name]]
     # The widest field stands in the all-highs case (at the largest spacing; at small spacing it is
     # a lattice of the largest size, which bench/dunes.py times as its 1 km case).
-    # The all-lows case stands in for the finest cells alone (16 s on its own, the same mesh size).
+    # The all-lows case stands in for the finest cells alone (16 s on its own at this field size).
     cases = [case for case in cases if case not in ({"width": ends["width"][1]}, {"depth": ends["depth"][1]},
                                                     {"cell_size": ends["cell_size"][0]})]
     cases.append({name: pair[0] for name, pair in ends.items()})
