@@ -103,22 +103,27 @@ def project(camera_obj, points, width, height):
     return (ndc[..., 0] + 1.0) / 2.0 * width, (ndc[..., 1] + 1.0) / 2.0 * height
 
 
+def _moved_camera_renders(camera_obj, render, width, height):
+    """(render before, render after the camera moves 5 cm and turns 1 degree, and for every pixel
+    of the first the column and row where its ground point (z = 0) lands in the second)."""
+    a = render()
+    origins, directions = camera_rays(camera_obj, width, height)
+    camera_obj.location.x += 0.05
+    camera_obj.rotation_euler.z -= np.radians(1.0)
+    bpy.context.view_layer.update()
+    b = render()
+    t = -origins[..., 2] / directions[..., 2]
+    col, row = project(camera_obj, origins + t[..., None] * directions, width, height)
+    return a, b, np.floor(col).astype(int), np.floor(row).astype(int)
+
+
 def glints_kept_after_camera_move(camera_obj, glints_in_render, width, height, enough):
     """Share of the glint pixels of a render that are glint pixels again after the camera moves
     5 cm and turns 1 degree. Each glint pixel of the first render is traced to the ground (z = 0)
     and projected into the second; pixels whose 3 x 3 neighbourhood there straddles a glint edge
     are left out. glints_in_render: () -> boolean (height, width) image; asserts that at least
     `enough` pixels were judged."""
-    a = glints_in_render()
-    origins, directions = camera_rays(camera_obj, width, height)
-    camera_obj.location.x += 0.05
-    camera_obj.rotation_euler.z -= np.radians(1.0)
-    bpy.context.view_layer.update()
-    b = glints_in_render()
-    t = -origins[..., 2] / directions[..., 2]
-    points = origins + t[..., None] * directions
-    col, row = project(camera_obj, points, width, height)
-    col, row = np.floor(col).astype(int), np.floor(row).astype(int)
+    a, b, col, row = _moved_camera_renders(camera_obj, glints_in_render, width, height)
     inside = a & (col >= 1) & (col < width - 1) & (row >= 1) & (row < height - 1)
     col, row = col[inside], row[inside]
     window = np.stack([b[row + dy, col + dx] for dy in (-1, 0, 1) for dx in (-1, 0, 1)])
@@ -131,15 +136,7 @@ def sparkles_kept_after_camera_move(camera_obj, sparkles_in_render, width, heigh
     """For one-pixel sparkles: (share of the sparkle pixels of a render with a sparkle pixel
     within one pixel of where their ground point lands after the camera moves 5 cm and turns 1
     degree, the same share for any pixel: what chance alone gives)."""
-    a = sparkles_in_render()
-    origins, directions = camera_rays(camera_obj, width, height)
-    camera_obj.location.x += 0.05
-    camera_obj.rotation_euler.z -= np.radians(1.0)
-    bpy.context.view_layer.update()
-    b = sparkles_in_render()
-    t = -origins[..., 2] / directions[..., 2]
-    col, row = project(camera_obj, origins + t[..., None] * directions, width, height)
-    col, row = np.floor(col).astype(int), np.floor(row).astype(int)
+    a, b, col, row = _moved_camera_renders(camera_obj, sparkles_in_render, width, height)
     inside = a & (col >= 1) & (col < width - 1) & (row >= 1) & (row < height - 1)
     assert inside.sum() > enough, "too few sparkle pixels to judge"
     near = np.zeros_like(b)

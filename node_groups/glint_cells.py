@@ -11,6 +11,7 @@ Pixel Angle and Pixel Size 0 (unlinked): one cell per grain. Twin: core.glints.s
 """
 
 from ..core import glints as twin
+from . import glint_facet
 from . import helper as h
 
 NAME = "Sandscape Glint Cells"
@@ -24,8 +25,7 @@ INPUTS = {  # name -> (type, description, default, min, max, subtype); append on
                    "object scales it)", 0.003, 0.0, None, "DISTANCE"),
     "Seed": ("NodeSocketFloat", "Another seed gives another random set of glinting grains",
              0.0, None, None, None),
-    "Threshold": ("NodeSocketFloat", "Grains whose noise exceeds this can glint: 0 all, 1 none; about "
-                  "(1 - threshold) of them", 0.97, 0.0, 1.0, "FACTOR"),
+    "Threshold": glint_facet.INPUTS["Threshold"],
     "Pixel Angle": ("NodeSocketFloat", "Angle one pixel spans (radians), from the render camera: "
                     "0 keeps one cell per grain at any distance", 0.0, 0.0, None, "ANGLE"),
     "Pixel Size": ("NodeSocketFloat", "Width of a pixel on an orthographic camera's image plane",
