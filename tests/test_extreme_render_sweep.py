@@ -15,8 +15,8 @@ from devtools import readback
 
 UNBOUNDED = 1e4  # stands for "as far as a user can type" where the slider has no end
 # Map sizes whose memory is tested alone (tests/test_footprint_stress.py: 16384 texels) stay
-# at 2048 here, so the sweep runs in seconds.
-CAPS = {"resolution": 2048, "image_resolution": 2048}
+# at 1024 here, so the sweep runs in seconds.
+CAPS = {"resolution": 1024, "image_resolution": 1024}
 FRAME = 200  # the demo still: walker, prints, low sun in view
 
 
