@@ -8,7 +8,7 @@ volume step rate); Blender's defaults; and each Sandscape preset. Writes the cur
 bench/quality.png (matplotlib, from requirements-bench.txt) and appends the table to
 bench/RESULTS.md.
 
-Run: .venv/bin/python bench/quality.py [--quick] [--axes] [--noise] [--no-append]
+Run: .venv/bin/python bench/quality.py [--quick] [--axes] [--noise] [--preset-frames F ...] [--no-append]
 """
 
 import argparse
@@ -67,6 +67,8 @@ def main(argv=None):
                         help="only the noise rows (four seeds of the demo still), about 5 minutes")
     parser.add_argument("--noise-frames", type=int, nargs="+", default=[NOISE_FRAME],
                         help="the demo frames the noise rows are measured on")
+    parser.add_argument("--preset-frames", type=int, nargs="+",
+                        help="only the presets and the defaults' short curve, on these demo frames")
     parser.add_argument("--no-append", action="store_true")
     args = parser.parse_args(argv)
     root = session.isolate()
@@ -82,6 +84,9 @@ def main(argv=None):
     bpy.ops.sandscape.build_demo_scene()
     scene = bpy.context.scene
     scene.render.resolution_percentage = 100
+    if args.preset_frames:
+        preset_tables(readback, scene, presets, args.preset_frames, args.quick, args.no_append)
+        return
     tables = []
     for frame in args.noise_frames:
         tables += noise_table(noise_rows(readback, scene, presets, frame), frame)
@@ -90,22 +95,8 @@ def main(argv=None):
                                if args.noise_frames != [NOISE_FRAME] else [])
         results.publish([results.heading("Quality, noise rows", flags), *tables], append=not args.no_append)
         return
-    scene.render.resolution_x, scene.render.resolution_y = RESOLUTION
-    scene.frame_set(FRAME)
     reference_spp = 256 if args.quick else 1024
-    base = dict(presets.BLENDER_DEFAULTS, **LIGHT_PATHS, samples=reference_spp // 2,
-                use_adaptive_sampling=False, use_denoising=False)
-    # Two halves with other seeds: their mean is the reference, their difference its own noise,
-    # which is taken out of every RMSE below (it would otherwise set a floor under them).
-    _, half = render(readback, scene, base, presets, seed=0)
-    _, other = render(readback, scene, base, presets, seed=1)
-    reference = (half + other) / 2
-    white = 2.0 ** -scene.view_settings.exposure
-    reference_noise = results.clipped_rmse(half, other, white) / 2
-
-    def rmse(pixels):
-        raw = results.display_rmse(pixels, reference, scene.view_settings.exposure)
-        return float(np.sqrt(max(raw ** 2 - reference_noise ** 2, 0.0)))
+    rmse, reference_noise, white = reference_rmse(readback, scene, presets, FRAME, reference_spp)
 
     counts = (16, 64, 256) if args.quick else (16, 32, 64, 128, 256)
     rows = []
@@ -162,6 +153,55 @@ def main(argv=None):
     lines += ["", *tables]
     results.publish(lines, append=not args.no_append)
     plot(rows, REPO / "bench" / "quality.png")
+
+
+def reference_rmse(readback, scene, presets, frame, reference_spp):
+    """(rmse(pixels), the reference's own noise, the display's white) for a demo frame at RESOLUTION.
+
+    Two halves with other seeds: their mean is the reference, their difference its own noise,
+    which is taken out of every RMSE (it would otherwise set a floor under them)."""
+    scene.render.resolution_x, scene.render.resolution_y = RESOLUTION
+    scene.frame_set(frame)
+    base = dict(presets.BLENDER_DEFAULTS, **LIGHT_PATHS, samples=reference_spp // 2,
+                use_adaptive_sampling=False, use_denoising=False)
+    _, half = render(readback, scene, base, presets, seed=0)
+    _, other = render(readback, scene, base, presets, seed=1)
+    reference = (half + other) / 2
+    white = 2.0 ** -scene.view_settings.exposure
+    reference_noise = results.clipped_rmse(half, other, white) / 2
+
+    def rmse(pixels):
+        raw = results.display_rmse(pixels, reference, scene.view_settings.exposure)
+        return float(np.sqrt(max(raw ** 2 - reference_noise ** 2, 0.0)))
+
+    return rmse, reference_noise, white
+
+
+def preset_tables(readback, scene, presets, frames, quick, no_append):
+    """Each preset, and Blender's defaults at 16 and 64 spp (the low end of their curve, where the
+    presets' errors lie), on several demo frames: the presets' rows re-measured across the film."""
+    reference_spp = 256 if quick else 1024
+    lines = [results.heading("Quality, presets across the film",
+                             ["--preset-frames", *map(str, frames)] + (["--quick"] if quick else []))]
+    for frame in frames:
+        rmse, reference_noise, white = reference_rmse(readback, scene, presets, frame, reference_spp)
+        rows = []
+        for samples in (16, 64):
+            settings = dict(presets.BLENDER_DEFAULTS, **LIGHT_PATHS, samples=samples)
+            seconds, pixels = render(readback, scene, settings, presets)
+            rows.append((f"defaults, {samples} spp", seconds, rmse(pixels)))
+            print(frame, rows[-1], flush=True)
+        for name, settings in presets.PRESETS.items():
+            seconds, pixels = render(readback, scene, settings, presets)
+            rows.append((f"preset {name.lower()}", seconds, rmse(pixels)))
+            print(frame, rows[-1], flush=True)
+        lines += [f"{results.machine()}. Demo frame {frame} at {RESOLUTION[0]}x{RESOLUTION[1]} through its "
+                  f"compositor; reference two {reference_spp // 2}-spp raw unbiased renders (own noise "
+                  f"{reference_noise:.5f}, taken out); RMSE clipped at the display's white ({white:g}); "
+                  "Blender's defaults are adaptive 0.01, OIDN, unbiased volumes, 128 volume bounces.\n",
+                  "| render | s | RMSE |", "|---|---|---|",
+                  *(f"| {label} | {seconds:.2f} | {error:.5f} |" for label, seconds, error in rows), ""]
+    results.publish(lines, append=not no_append)
 
 
 def noise_rows(readback, scene, presets, frame=NOISE_FRAME):
