@@ -155,19 +155,24 @@ def main(argv=None):
     plot(rows, REPO / "bench" / "quality.png")
 
 
-def reference_rmse(readback, scene, presets, frame, reference_spp):
-    """(rmse(pixels), the reference's own noise, the display's white) for a demo frame at RESOLUTION.
-
-    Two halves with other seeds: their mean is the reference, their difference its own noise,
-    which is taken out of every RMSE (it would otherwise set a floor under them)."""
+def reference_halves(readback, scene, presets, frame, reference_spp):
+    """(half, other half, the display's white): two raw unbiased renders of a demo frame at
+    RESOLUTION, each with half the reference's samples and its own seed."""
     scene.render.resolution_x, scene.render.resolution_y = RESOLUTION
     scene.frame_set(frame)
     base = dict(presets.BLENDER_DEFAULTS, **LIGHT_PATHS, samples=reference_spp // 2,
                 use_adaptive_sampling=False, use_denoising=False)
-    _, half = render(readback, scene, base, presets, seed=0)
-    _, other = render(readback, scene, base, presets, seed=1)
+    halves = [render(readback, scene, base, presets, seed=seed)[1] for seed in (0, 1)]
+    return *halves, 2.0 ** -scene.view_settings.exposure
+
+
+def reference_rmse(readback, scene, presets, frame, reference_spp):
+    """(rmse(pixels), the reference's own noise, the display's white) for a demo frame.
+
+    The halves' mean is the reference, their difference its own noise, which is taken out of
+    every RMSE (it would otherwise set a floor under them)."""
+    half, other, white = reference_halves(readback, scene, presets, frame, reference_spp)
     reference = (half + other) / 2
-    white = 2.0 ** -scene.view_settings.exposure
     reference_noise = results.clipped_rmse(half, other, white) / 2
 
     def rmse(pixels):

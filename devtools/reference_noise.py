@@ -40,18 +40,14 @@ def main(argv=None):
     bpy.ops.sandscape.build_demo_scene()
     scene = bpy.context.scene
     scene.render.resolution_percentage = 100
-    scene.render.resolution_x, scene.render.resolution_y = quality.RESOLUTION
-    scene.frame_set(args.frame)
-    base = dict(presets.BLENDER_DEFAULTS, **quality.LIGHT_PATHS, samples=args.samples,
-                use_adaptive_sampling=False, use_denoising=False)
-    white = 2.0 ** -scene.view_settings.exposure
+    material = sand.find_sand_material(scene.sandscape_footprints.terrain)
     halves = {}
     for label in ("glints", "no glints"):
         if label == "no glints":
-            material = sand.find_sand_material(scene.sandscape_footprints.terrain)
             sand.glint_node(material).inputs["Threshold"].default_value = 1.0
         started = time.perf_counter()
-        halves[label] = [quality.render(readback, scene, base, presets, seed=seed)[1] for seed in (0, 1)]
+        *halves[label], white = quality.reference_halves(readback, scene, presets, args.frame,
+                                                         2 * args.samples)
         noise = results.clipped_rmse(*halves[label], white) / 2
         print(f"{label}: reference noise {noise:.5f} ({time.perf_counter() - started:.0f} s)", flush=True)
     a, b, c, d = (np.minimum(h, white) for h in (*halves["glints"], *halves["no glints"]))
