@@ -8,7 +8,8 @@ versioned groups Sandscape Gated Blur and Sandscape God Rays N.
 The god rays need the sun's place on screen on every frame: it is keyframed, so a render farm
 without Sandscape renders it. While the extension is on, the keys are brought up to date when
 the file is saved and when a render starts (the camera, lens, resolution or frame range may
-have changed since Add Post Effects ran).
+have changed since Add Post Effects ran), stepping through the frames only when the digest of
+what they depend on (view_digest.py) changed since they were made.
 """
 
 import types
@@ -20,13 +21,14 @@ from bpy.app.handlers import persistent
 from ..core import post
 from ..node_groups import gated_blur, god_rays
 from ..node_groups import helper as h
-from . import atmosphere, sand, shot
+from . import atmosphere, sand, shot, view_digest
 from . import ownership as own
 
 SUN_COLOR = (1.0, 0.93, 0.8, 1.0)
 SUN_KEY, RAYS = "Sandscape Sun Key", "Sandscape God Rays"  # node names
 DENOISE, DENOISE_VOLUME = "Sandscape Denoise", "Sandscape Denoise Scattered"
 WHITE = "Sandscape Display White"
+DIGEST_KEY = "sandscape_sun_digest"  # on our tree: the view digest its sun keys were made for
 GLINT_AOV = sand.GLINT_AOV  # the sand material writes where grains can glint
 # A pixel is taken raw as it passes both (ratios to the ground, weight rising from 0 to 1):
 SPARKLE_BAR = (1.5, 3.0)  # its glint light
@@ -334,8 +336,13 @@ def refresh_sun_keys(scene):
     if sun is None or shot.scene_camera(scene) is None:
         return False
     fade = tree.get("fade", 0.25)
-    curve = sun_curve(scene, sun, fade)
+    camera = shot.scene_camera(scene)
+    fingerprint = view_digest.digest(scene, sun, camera, fade)
     keyed = keyed_curve(tree)
+    if fingerprint is not None and tree.get(DIGEST_KEY) == fingerprint and keyed is not None:
+        return False  # nothing the keys depend on changed: no frame is stepped
+    curve = sun_curve(scene, sun, fade)
+    tree[DIGEST_KEY] = fingerprint or ""
     if keyed is not None and len(keyed) == len(curve) and np.allclose(
             np.array(keyed), np.array(curve), atol=1e-6, rtol=0.0):
         return False
@@ -416,8 +423,12 @@ def apply_post_effects(scene, settings):
     scene.render.use_compositing = True
     curve = []
     if settings.use_god_rays:
-        curve = sun_curve(scene, atmosphere.scene_sun(scene), settings.fade)
+        sun = atmosphere.scene_sun(scene)
+        curve = sun_curve(scene, sun, settings.fade)
         key_sun(ours, curve)
+        camera = shot.scene_camera(scene)
+        fingerprint = view_digest.digest(scene, sun, camera, settings.fade) if sun and camera else None
+        ours[DIGEST_KEY] = fingerprint or ""
     return {"tree": ours, "replaced": replaced, "curve": curve, "switched_engine": switched_engine,
             "switched_denoiser": switched_denoiser}
 

@@ -1,5 +1,7 @@
 """Small scenes with known geometry, for tests and benchmarks."""
 
+import math
+
 import bpy
 import numpy as np
 
@@ -221,3 +223,32 @@ def world_volume(world, density=0.0):
     scatter.inputs["Density"].default_value = density
     tree.links.new(scatter.outputs[0], output.inputs["Volume"])
     return scatter
+
+
+def long_keyed_shot(frames=1000):
+    """A long shot with the god rays keyed: a dolly camera aimed by Track To at a keyed target, a
+    side sun, and one ordinary animated modifier elsewhere (a waving ground). Returns the scene."""
+    scene = bpy.context.scene
+    scene.frame_start, scene.frame_end = 1, frames
+    bpy.ops.mesh.primitive_plane_add(size=40)
+    wave = bpy.context.active_object.modifiers.new("Wave", "WAVE")
+    for frame, height in ((1, 0.1), (frames, 0.3)):
+        wave.height = height
+        wave.keyframe_insert("height", frame=frame)
+    target = bpy.data.objects.new("Target", None)
+    scene.collection.objects.link(target)
+    for frame, x in ((1, -2.0), (frames, 2.0)):
+        target.location = (x, 0.0, 0.5)
+        target.keyframe_insert("location", frame=frame)
+    obj = camera("PERSP", location=(0.0, -8.0, 1.5), rotation=(math.radians(85), 0, 0), lens=35)
+    for frame, x in ((1, -3.0), (frames, 3.0)):
+        obj.location.x = x
+        obj.keyframe_insert("location", index=0, frame=frame)
+    aim = obj.constraints.new("TRACK_TO")
+    aim.target, aim.track_axis, aim.up_axis = target, "TRACK_NEGATIVE_Z", "UP_Y"
+    air = scene.sandscape_atmosphere
+    air.sun_elevation, air.sun_azimuth, air.density = math.radians(10), math.radians(20), 0.0
+    assert bpy.ops.sandscape.add_atmosphere() == {"FINISHED"}
+    scene.sandscape_post.use_blur = scene.sandscape_post.use_denoise = False
+    assert bpy.ops.sandscape.add_post_effects() == {"FINISHED"}
+    return scene

@@ -1,0 +1,82 @@
+"""What Sandscape adds to saving and to a render's start: the god rays' sun keys.
+
+Scene: devtools.scenes.long_keyed_shot (1000 frames, a dolly camera aimed at a keyed target, a
+side sun, the god rays, one animated modifier elsewhere). Times, as the median of REPEATS:
+saving with Sandscape's handlers off (the file alone), saving with them on and nothing changed,
+saving after the camera's lens changed (the keys made again), and the render-start handler on
+its own with nothing changed. Appends the table to bench/RESULTS.md.
+
+Run: .venv/bin/python bench/save_cost.py [--frames N] [--no-append]
+"""
+
+import argparse
+import pathlib
+import statistics
+import sys
+import tempfile
+import time
+
+REPO = pathlib.Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(REPO))
+
+from devtools import results, session  # noqa: E402
+
+REPEATS = 5
+
+
+def timed(action):
+    seconds = []
+    for _ in range(REPEATS):
+        started = time.perf_counter()
+        action()
+        seconds.append(time.perf_counter() - started)
+    return statistics.median(seconds)
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--frames", type=int, default=1000)
+    parser.add_argument("--no-append", action="store_true")
+    args = parser.parse_args(argv)
+    root = session.isolate()
+    import bpy
+
+    sandscape = session.install_dev_extension(root)
+    from devtools import scenes
+
+    post = sandscape.blender.post
+    session.reset()
+    scene = scenes.long_keyed_shot(args.frames)
+    path = pathlib.Path(tempfile.mkdtemp(prefix="sandscape-save-")) / "shot.blend"
+
+    def save():
+        bpy.ops.wm.save_as_mainfile(filepath=str(path))
+
+    def save_after_a_lens_change():
+        scene.camera.data.lens += 1.0
+        save()
+
+    save()
+    post.unregister()
+    plain = timed(save)
+    post.register()
+    unchanged = timed(save)
+    changed = timed(save_after_a_lens_change)
+    render_start = timed(lambda: post._refresh_all())
+    rows = [("save, Sandscape's handlers off", plain), ("save, nothing changed", unchanged),
+            ("save after a lens change (keys made again)", changed),
+            ("render-start handler, nothing changed", render_start)]
+    for name, seconds in rows:
+        print(f"save cost: {name}: {seconds * 1000:.1f} ms", flush=True)
+    flags = [f"--frames {args.frames}"] if args.frames != 1000 else []
+    lines = [results.heading("Save and render-start cost", flags),
+             f"{results.machine()}. devtools/scenes.long_keyed_shot: {args.frames} frames, a dolly camera "
+             f"aimed at a keyed target, the god rays keyed, one animated modifier. Median of {REPEATS}.\n",
+             "| what | ms |", "|---|---|"]
+    lines += [f"| {name} | {seconds * 1000:.1f} |" for name, seconds in rows]
+    lines.append(f"\nAdded to a save with nothing changed: {(unchanged - plain) * 1000:.1f} ms.")
+    results.publish(lines, append=not args.no_append)
+
+
+if __name__ == "__main__":
+    main()

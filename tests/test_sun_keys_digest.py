@@ -1,0 +1,123 @@
+"""The god rays' sun keys are made again on save and render start only when what they depend on
+changed: an unchanged 1000-frame shot saves without stepping a frame, and every change that moves
+the sun on screen (a camera key, the lens, the aim's target, a parent, the render size, the range,
+a marker that switches cameras) still re-keys it, checked against stepping the frames."""
+
+import math
+
+import bpy
+import numpy as np
+import pytest
+
+from devtools import scenes
+
+
+@pytest.fixture
+def shot(tmp_path):
+    return scenes.long_keyed_shot(1000), tmp_path / "shot.blend"
+
+
+class FrameCounter:
+    def __init__(self):
+        self.count = 0
+
+    def __call__(self, *_):
+        self.count += 1
+
+    def __enter__(self):
+        bpy.app.handlers.frame_change_pre.append(self)
+        return self
+
+    def __exit__(self, *_):
+        bpy.app.handlers.frame_change_pre.remove(self)
+
+
+def saved_steps(path):
+    with FrameCounter() as frames:
+        bpy.ops.wm.save_as_mainfile(filepath=str(path))
+    return frames.count
+
+
+def keys_are_current(scene, sandscape):
+    post = sandscape.blender.post
+    sun = sandscape.blender.atmosphere.scene_sun(scene)
+    keyed = np.array(post.keyed_curve(scene.compositing_node_group))
+    fresh = np.array(post.sun_curve(scene, sun, 0.25))
+    return keyed.shape == fresh.shape and np.abs(keyed - fresh).max() <= 1e-6
+
+
+def test_an_unchanged_shot_saves_without_stepping_a_frame(shot, sandscape):
+    scene, path = shot
+    assert saved_steps(path) == 0  # keyed by Add Post Effects, nothing changed since
+    scene.frame_set(500)  # another current frame is no change to the keys
+    assert saved_steps(path) == 0
+    assert keys_are_current(scene, sandscape)
+
+
+def move_camera_key(scene):
+    fcurve = scene.camera.animation_data.action.layers[0].strips[0].channelbags[0].fcurves[0]
+    fcurve.keyframe_points[-1].co.y += 2.0
+    fcurve.keyframe_points[-1].handle_left.y += 2.0
+    fcurve.keyframe_points[-1].handle_right.y += 2.0
+
+
+def move_target_key(scene):
+    target = bpy.data.objects["Target"]
+    fcurve = target.animation_data.action.layers[0].strips[0].channelbags[0].fcurves[0]
+    for point in fcurve.keyframe_points:
+        point.co.y += 1.0
+        point.handle_left.y += 1.0
+        point.handle_right.y += 1.0
+
+
+def parent_camera(scene):
+    rig = bpy.data.objects.new("Rig", None)
+    scene.collection.objects.link(rig)
+    scene.camera.parent = rig
+    rig.rotation_euler.z = math.radians(15)
+
+
+def bind_marker(scene):
+    kept = scene.camera
+    other = scenes.camera("PERSP", location=(4.0, -6.0, 1.5), rotation=(math.radians(85), 0, 0.4), lens=50)
+    scene.camera = kept  # scenes.camera made the new one the scene's
+    scene.timeline_markers.new("Cut", frame=600).camera = other
+
+
+CHANGES = {
+    "camera key": move_camera_key,
+    "lens": lambda scene: setattr(scene.camera.data, "lens", 70.0),
+    "aim's target key": move_target_key,
+    "parent": parent_camera,
+    "render size": lambda scene: setattr(scene.render, "resolution_x", 640),
+    "frame range": lambda scene: setattr(scene, "frame_end", 800),
+    "marker switches camera": bind_marker,
+    "static sun turned": lambda scene: setattr(
+        sandscape_sun(scene).rotation_euler, "z", sandscape_sun(scene).rotation_euler.z + 0.3),
+}
+
+
+def sandscape_sun(scene):
+    return next(o for o in scene.objects if o.type == "LIGHT" and o.data.type == "SUN")
+
+
+@pytest.mark.parametrize("change", CHANGES)
+def test_every_change_that_moves_the_sun_on_screen_re_keys_it(shot, sandscape, change):
+    scene, path = shot
+    CHANGES[change](scene)
+    bpy.context.view_layer.update()
+    assert not keys_are_current(scene, sandscape)  # the change moved the sun on screen
+    assert saved_steps(path) > 0
+    assert keys_are_current(scene, sandscape)
+    assert saved_steps(path) == 0  # and once keyed, the next save is free again
+
+
+def test_motion_the_digest_cannot_see_always_re_keys(shot, sandscape):
+    scene, path = shot
+    wrap = scene.camera.constraints.new("SHRINKWRAP")  # follows the ground's waving geometry
+    wrap.target = next(o for o in scene.objects if o.type == "MESH")
+    wrap.shrinkwrap_type, wrap.distance = "NEAREST_SURFACE", 1.5
+    assert sandscape.blender.view_digest.digest(scene, sandscape_sun(scene), scene.camera, 0.25) is None
+    assert saved_steps(path) > 0
+    assert saved_steps(path) > 0
+    assert keys_are_current(scene, sandscape)
