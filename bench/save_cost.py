@@ -44,7 +44,7 @@ def main(argv=None):
     sandscape = session.install_dev_extension(root)
     from devtools import scenes
 
-    post = sandscape.blender.post
+    handlers = sandscape.blender.post_handlers
     session.reset()
     scene = scenes.long_keyed_shot(args.frames)
     path = pathlib.Path(tempfile.mkdtemp(prefix="sandscape-save-")) / "shot.blend"
@@ -57,12 +57,12 @@ def main(argv=None):
         save()
 
     save()
-    post.unregister()
+    handlers.unregister()
     plain = timed(save)
-    post.register()
+    handlers.register()
     unchanged = timed(save)
     changed = timed(save_after_a_lens_change)
-    render_start = timed(lambda: post._refresh_all())
+    render_start = timed(lambda: handlers.refresh_all())
     rows = [("save, Sandscape's handlers off", plain), ("save, nothing changed", unchanged),
             ("save after a lens change (keys made again)", changed),
             ("render-start handler, nothing changed", render_start)]

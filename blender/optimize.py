@@ -9,7 +9,7 @@ import numpy as np
 from mathutils import Vector
 
 from . import ownership as own
-from . import post, sand
+from . import post, sand, sun_keys
 
 VOLUME_SHADERS = {"ShaderNodeVolumeScatter", "ShaderNodeVolumeAbsorption", "ShaderNodeVolumePrincipled",
                   "ShaderNodeVolumeCoefficients"}
@@ -122,7 +122,7 @@ def _seen_by_camera(scene, obj):
         for frame in sorted({scene.frame_start, (scene.frame_start + scene.frame_end) // 2, scene.frame_end}):
             scene.frame_set(frame)
             corners = np.array([obj.matrix_world @ Vector(c) for c in obj.bound_box])
-            clip = np.c_[corners, np.ones(8)] @ post.view_projection(scene, camera).T
+            clip = np.c_[corners, np.ones(8)] @ sun_keys.view_projection(scene, camera).T
             w = clip[:, 3]
             if (w > 0).all():
                 ndc = clip[:, :2] / w[:, None]
@@ -176,7 +176,7 @@ def _bypass(tree, add):
 
 def _idle_god_rays(scene):
     tree = own.scene_compositor(scene)
-    rays = post.rays_node(tree)
+    rays = sun_keys.rays_node(tree)
     if rays is None:
         return
     reason = None
@@ -190,7 +190,7 @@ def _idle_god_rays(scene):
 
 
 def _always_zero(tree, rays):
-    keyed = post.keyed_curve(tree)
+    keyed = sun_keys.keyed_curve(tree)
     if keyed is None:
         return rays.inputs["Intensity"].default_value == 0
     return all(intensity == 0 for *_, intensity in keyed)

@@ -5,42 +5,26 @@ Not a shared group but the tree on scene.compositing_node_group, one per scene, 
 settings on every run (an effect switched off is absent, not bypassed). Its parts are the
 versioned groups Sandscape Gated Blur and Sandscape God Rays N.
 
-The god rays need the sun's place on screen on every frame: it is keyframed, so a render farm
-without Sandscape renders it. While the extension is on, the keys are brought up to date when
-the file is saved and when a render starts (the camera, lens, resolution or frame range may
-have changed since Add Post Effects ran), stepping through the frames only when the digest of
-what they depend on (view_digest.py) changed since they were made.
+The god rays need the sun's place on screen on every frame: it is keyframed (sun_keys.py), so a
+render farm without Sandscape renders it; post_handlers.py keeps the keys up to date.
 """
 
 import types
 
 import bpy
-import numpy as np
-from bpy.app.handlers import persistent
 
-from ..core import post
 from ..node_groups import gated_blur, god_rays
 from ..node_groups import helper as h
-from . import atmosphere, sand, shot, view_digest
+from . import atmosphere, sand, sun_keys
 from . import ownership as own
 
 SUN_COLOR = (1.0, 0.93, 0.8, 1.0)
-SUN_KEY, RAYS = "Sandscape Sun Key", "Sandscape God Rays"  # node names
 DENOISE, DENOISE_VOLUME = "Sandscape Denoise", "Sandscape Denoise Scattered"
 WHITE = "Sandscape Display White"
-DIGEST_KEY = "sandscape_sun_digest"  # on our tree: the view digest its sun keys were made for
 GLINT_AOV = sand.GLINT_AOV  # the sand material writes where grains can glint
 # A pixel is taken raw as it passes both (ratios to the ground, weight rising from 0 to 1):
 SPARKLE_BAR = (1.5, 3.0)  # its glint light
 DENOISED_BAR = (1.1, 1.3)  # its denoised self
-
-
-def rays_node(tree):
-    return own.node(tree, RAYS)
-
-
-def sun_key_node(tree):
-    return own.node(tree, SUN_KEY)
 
 
 def display_white(scene):
@@ -71,7 +55,7 @@ def build(tree, settings, white=1.0, image_denoised=False):
             volume = _denoise(tree, volume, name=DENOISE_VOLUME)
         image = _with_blurred(tree, layers, image, volume, settings)
     if settings.use_god_rays:
-        rays = h.add_node(tree, "CompositorNodeGroup", name=RAYS, label="God Rays",
+        rays = h.add_node(tree, "CompositorNodeGroup", name=sun_keys.RAYS, label="God Rays",
                           node_tree=h.ensure_group(god_rays.Builder(settings.samples)),
                           inputs={"Density": settings.ray_density, "Weight": settings.ray_weight,
                                   "Decay": settings.ray_decay, "Exposure": settings.ray_exposure})
@@ -233,7 +217,7 @@ def _occlusion(tree, layers, rays, radius):
     aspect = h.math(tree, "DIVIDE", size.outputs["X"], size.outputs["Y"], label="Aspect")
     offset = h.add_node(tree, "ShaderNodeVectorMath", operation="SUBTRACT")
     h.link(tree, coordinates.outputs["Normalized"], offset.inputs[0])
-    sun = h.add_node(tree, "ShaderNodeCombineXYZ", name=SUN_KEY, label="Sun (keyed)")
+    sun = h.add_node(tree, "ShaderNodeCombineXYZ", name=sun_keys.SUN_KEY, label="Sun (keyed)")
     h.link(tree, sun.outputs[0], offset.inputs[1])
     split = h.add_node(tree, "ShaderNodeSeparateXYZ")
     h.link(tree, offset.outputs[0], split.inputs[0])
@@ -256,132 +240,6 @@ def _occlusion(tree, layers, rays, radius):
     # The keyed sun position drives the rays as well: one source of truth per frame.
     h.link(tree, sun.outputs[0], rays.inputs["Sun"])
     return tint.outputs[0]
-
-
-# ---------------------------------------------------------------- the sun on screen, keyed
-
-def view_projection(scene, camera):
-    depsgraph = bpy.context.evaluated_depsgraph_get()
-    render = scene.render
-    width = max(render.resolution_x * render.resolution_percentage // 100, 1)
-    height = max(render.resolution_y * render.resolution_percentage // 100, 1)
-    projection = np.array(camera.calc_matrix_camera(
-        depsgraph, x=width, y=height, scale_x=render.pixel_aspect_x, scale_y=render.pixel_aspect_y))
-    return projection @ np.array(camera.matrix_world.inverted())
-
-
-def sun_curve(scene, sun, fade):
-    """[(frame, u, v, intensity)] of the sun seen by the scene camera on every frame of the range."""
-    kept = scene.frame_current
-    curve = []
-    try:
-        for frame in range(scene.frame_start, scene.frame_end + 1):
-            scene.frame_set(frame)
-            direction = np.array(sun.matrix_world.col[2][:3])
-            (u, v), in_front = post.screen_position(view_projection(scene, scene.camera), direction)
-            intensity = post.sun_intensity((u, v), in_front, fade)
-            if not in_front or not np.isfinite((u, v)).all():
-                u, v = 0.5, 0.5  # any finite place: the intensity is 0
-            curve.append((frame, float(u), float(v), float(intensity)))
-    finally:
-        scene.frame_set(kept)
-    return curve
-
-
-def key_sun(tree, curve):
-    """Keyframes, not a driver: a render farm needs no scripts."""
-    sun_node, rays = sun_key_node(tree), rays_node(tree)
-    if tree.animation_data is not None:
-        tree.animation_data_clear()
-    sockets = (sun_node.inputs["X"], sun_node.inputs["Y"], rays.inputs["Intensity"])
-    for frame, *values in curve:
-        for socket, value in zip(sockets, values, strict=True):
-            socket.default_value = value
-            socket.keyframe_insert("default_value", frame=frame)
-
-
-def keyed_curve(tree):
-    """The (frame, u, v, intensity) keys the tree holds now, or None."""
-    action = tree.animation_data.action if tree.animation_data else None
-    if action is None:
-        return None
-    from bpy_extras import anim_utils
-
-    bag = anim_utils.action_get_channelbag_for_slot(action, tree.animation_data.action_slot)
-    sun_node, rays = sun_key_node(tree), rays_node(tree)
-    paths = [socket.path_from_id("default_value")
-             for socket in (sun_node.inputs["X"], sun_node.inputs["Y"], rays.inputs["Intensity"])]
-    columns = []
-    for path in paths:
-        fcurve = next((c for c in bag.fcurves if c.data_path == path), None)
-        if fcurve is None:
-            return None
-        values = np.empty(len(fcurve.keyframe_points) * 2, np.float64)
-        fcurve.keyframe_points.foreach_get("co", values)
-        columns.append(values.reshape(-1, 2))
-    if len({len(c) for c in columns}) != 1:
-        return None
-    return [(int(round(f)), u, v, i) for (f, u), (_, v), (_, i) in zip(*columns, strict=True)]
-
-
-def refresh_sun_keys(scene):
-    """Re-key the sun when what the camera sees of it changed; True when the keys were rewritten."""
-    tree = own.scene_compositor(scene)
-    if tree is None or rays_node(tree) is None or sun_key_node(tree) is None:
-        return False
-    white = own.node(tree, WHITE)
-    if white is not None:  # the exposure may have changed since the tree was built
-        white.outputs[0].default_value = display_white(scene)
-    sun = atmosphere.scene_sun(scene)
-    if sun is None or shot.scene_camera(scene) is None:
-        return False
-    fade = tree.get("fade", 0.25)
-    camera = shot.scene_camera(scene)
-    fingerprint = view_digest.digest(scene, sun, camera, fade)
-    keyed = keyed_curve(tree)
-    if fingerprint is not None and tree.get(DIGEST_KEY) == fingerprint and keyed is not None:
-        return False  # nothing the keys depend on changed: no frame is stepped
-    curve = sun_curve(scene, sun, fade)
-    tree[DIGEST_KEY] = fingerprint or ""
-    if keyed is not None and len(keyed) == len(curve) and np.allclose(
-            np.array(keyed), np.array(curve), atol=1e-6, rtol=0.0):
-        return False
-    key_sun(tree, curve)
-    return True
-
-
-def stale_for_denoiser(scene):
-    """True when Cycles' denoising was switched since our tree was built: its blur denoises the
-    scattered light exactly when Cycles denoised the image."""
-    tree, settings = own.scene_compositor(scene), scene.sandscape_post
-    if tree is None or scene.compositing_node_group != tree or settings.use_denoise or not settings.use_blur:
-        return False  # our own denoising switches Cycles' off when it is built
-    return (own.node(tree, DENOISE_VOLUME) is not None) != scene.cycles.use_denoising
-
-
-@persistent
-def _refresh_all(*_):
-    for scene in bpy.data.scenes:
-        if scene.library is None:
-            if stale_for_denoiser(scene):
-                apply_post_effects(scene, scene.sandscape_post)  # keys the sun as it builds
-            else:
-                refresh_sun_keys(scene)
-
-
-HANDLERS = (bpy.app.handlers.save_pre, bpy.app.handlers.render_init)
-
-
-def register():
-    for handlers in HANDLERS:
-        if _refresh_all not in handlers:
-            handlers.append(_refresh_all)
-
-
-def unregister():
-    for handlers in HANDLERS:
-        if _refresh_all in handlers:
-            handlers.remove(_refresh_all)
 
 
 # ---------------------------------------------------------------- the operator's work
@@ -423,12 +281,7 @@ def apply_post_effects(scene, settings):
     scene.render.use_compositing = True
     curve = []
     if settings.use_god_rays:
-        sun = atmosphere.scene_sun(scene)
-        curve = sun_curve(scene, sun, settings.fade)
-        key_sun(ours, curve)
-        camera = shot.scene_camera(scene)
-        fingerprint = view_digest.digest(scene, sun, camera, settings.fade) if sun and camera else None
-        ours[DIGEST_KEY] = fingerprint or ""
+        curve = sun_keys.key_scene(ours, scene, atmosphere.scene_sun(scene), settings.fade)
     return {"tree": ours, "replaced": replaced, "curve": curve, "switched_engine": switched_engine,
             "switched_denoiser": switched_denoiser}
 
@@ -466,3 +319,12 @@ def set_passes(scene, settings):
             aov.name = GLINT_AOV
         if aov is not None:
             aov.type = "VALUE"
+
+
+def stale_for_denoiser(scene):
+    """True when Cycles' denoising was switched since our tree was built: its blur denoises the
+    scattered light exactly when Cycles denoised the image."""
+    tree, settings = own.scene_compositor(scene), scene.sandscape_post
+    if tree is None or scene.compositing_node_group != tree or settings.use_denoise or not settings.use_blur:
+        return False  # our own denoising switches Cycles' off when it is built
+    return (own.node(tree, DENOISE_VOLUME) is not None) != scene.cycles.use_denoising

@@ -39,10 +39,10 @@ def saved_steps(path):
 
 
 def keys_are_current(scene, sandscape):
-    post = sandscape.blender.post
+    keys = sandscape.blender.sun_keys
     sun = sandscape.blender.atmosphere.scene_sun(scene)
-    keyed = np.array(post.keyed_curve(scene.compositing_node_group))
-    fresh = np.array(post.sun_curve(scene, sun, 0.25))
+    keyed = np.array(keys.keyed_curve(scene.compositing_node_group))
+    fresh = np.array(keys.sun_curve(scene, sun, 0.25))
     return keyed.shape == fresh.shape and np.abs(keyed - fresh).max() <= 1e-6
 
 

@@ -168,7 +168,7 @@ def test_post_effects_keep_the_renders_alpha(lit_scene):
 
 
 def test_god_rays_follow_a_camera_turned_after_add_post_effects(lit_scene, sandscape):
-    post = sandscape.blender.post
+    keys = sandscape.blender.sun_keys
     lit_scene.sandscape_post.use_blur = lit_scene.sandscape_post.use_denoise = False
     lit_scene.frame_start = lit_scene.frame_end = 1
     bpy.ops.sandscape.add_post_effects()
@@ -176,11 +176,11 @@ def test_god_rays_follow_a_camera_turned_after_add_post_effects(lit_scene, sands
     lit_scene.camera.rotation_euler[2] += math.radians(20)  # the sun moves across the frame
     bpy.context.view_layer.update()
     sun = sandscape.blender.atmosphere.scene_sun(lit_scene)
-    expected = post.sun_curve(lit_scene, sun, 0.25)
-    assert abs(post.keyed_curve(tree)[0][1] - expected[0][1]) > 0.1  # stale until saved or rendered
+    expected = keys.sun_curve(lit_scene, sun, 0.25)
+    assert abs(keys.keyed_curve(tree)[0][1] - expected[0][1]) > 0.1  # stale until saved or rendered
     readback.cycles_scene(lit_scene, resolution=(64, 36), samples=1)
     with_rays = readback.render(lit_scene)  # render start re-keys the sun
-    assert np.abs(np.array(post.keyed_curve(tree)) - post.sun_curve(lit_scene, sun, 0.25)).max() <= 1e-6
+    assert np.abs(np.array(keys.keyed_curve(tree)) - keys.sun_curve(lit_scene, sun, 0.25)).max() <= 1e-6
     lit_scene.render.use_compositing = False
     rays = (with_rays - readback.render(lit_scene))[..., :3].sum(-1)
     # The glow is brightest at the sun's new place on screen (column, row from the bottom).
@@ -190,7 +190,7 @@ def test_god_rays_follow_a_camera_turned_after_add_post_effects(lit_scene, sands
 
 
 def test_saving_re_keys_the_sun(lit_scene, sandscape, tmp_path):
-    post = sandscape.blender.post
+    keys = sandscape.blender.sun_keys
     lit_scene.sandscape_post.use_blur = False
     lit_scene.frame_start, lit_scene.frame_end = 1, 5
     bpy.ops.sandscape.add_post_effects()
@@ -198,8 +198,8 @@ def test_saving_re_keys_the_sun(lit_scene, sandscape, tmp_path):
     lit_scene.render.resolution_x, lit_scene.render.resolution_y = 300, 100
     bpy.ops.wm.save_as_mainfile(filepath=str(tmp_path / "keys.blend"))
     sun = sandscape.blender.atmosphere.scene_sun(lit_scene)
-    keyed = np.array(post.keyed_curve(lit_scene.compositing_node_group))
-    assert np.abs(keyed - post.sun_curve(lit_scene, sun, 0.25)).max() <= 1e-6
+    keyed = np.array(keys.keyed_curve(lit_scene.compositing_node_group))
+    assert np.abs(keyed - keys.sun_curve(lit_scene, sun, 0.25)).max() <= 1e-6
 
 
 # ---------------------------------------------------------------- painting after changes

@@ -7,13 +7,13 @@ before they go.
 
 import bpy
 
-from ..blender import post, sparkle_footprint
+from ..blender import post_handlers, sparkle_footprint
 from ..operators import atmosphere, clouds, demo, dunes, footprints, nodes, render, sand, walker
 from ..operators import post as post_operators
 from . import menus, panels, properties
 
 MODULES = (properties, dunes, sand, walker, footprints, atmosphere, clouds, post_operators, demo, render,
-           nodes, panels, menus, post, sparkle_footprint)
+           nodes, panels, menus, post_handlers, sparkle_footprint)
 
 
 def register():
