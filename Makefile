@@ -1,4 +1,5 @@
-# make demo: venv + pinned deps, build the demo scene headless, render out/demo.png
+# make demo: venv + pinned deps, build the demo scene headless, save out/demo.blend, render out/demo.png
+# make demo-blend: regenerate the committed demo.blend (after a change to the demo or a node group)
 # make test: venv + pinned deps, ruff, then the whole pytest suite
 #
 # BLENDER picks the bpy the commands run on, each in its own venv:
@@ -21,7 +22,7 @@ PYTHON ?= $(shell sh devtools/find-python $(PYTHON_VERSION))
 PY := $(VENV)/bin/python
 STAMP := $(VENV)/.installed
 
-.PHONY: demo test lint bench clean
+.PHONY: demo demo-blend test lint bench clean
 
 # A venv made by another Python (an older checkout's, or the other Blender's) is made anew.
 $(STAMP): $(REQUIREMENTS)
@@ -36,6 +37,9 @@ QUALITY ?= draft
 
 demo: $(STAMP)
 	$(PY) devtools/demo.py --quality $(QUALITY) --output out/demo.png
+
+demo-blend: $(STAMP)
+	$(PY) devtools/demo.py --blend demo.blend --build-only
 
 lint: $(STAMP)
 	$(VENV)/bin/ruff check .

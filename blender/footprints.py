@@ -493,11 +493,13 @@ def walk(scene, settings, progress=None):
         motion = np.concatenate([contacts, births[:, None]], axis=1)
     vertices, polygons = evaluated_terrain(terrain)
     source = settings.walker if settings.source == "WALKER" else settings.particle_object
-    inputs = {"source": settings.source, "object": source.name, "terrain": terrain.name, "start": start,
+    # The source and terrain by identity, not name: renaming either keeps the prints (the points
+    # object names its terrain by pointer; the source is kept beside the signature).
+    inputs = {"source": settings.source, "start": start,
               "end": end, "stride": settings.stride, "stance": settings.stance,
               "variation": settings.variation, "seed": settings.seed, "motion": _digest(motion),
               "placement": _digest(np.array(terrain.matrix_world), vertices)}
-    return {"steps": steps, "vertices": vertices, "polygons": polygons,
+    return {"steps": steps, "vertices": vertices, "polygons": polygons, "source": source,
             "signature": json.dumps(inputs, sort_keys=True, default=str)}
 
 
@@ -524,6 +526,7 @@ def emit(scene, settings, progress=None, walked=None):
               "surface_normal": normals[landed]}
     obj = write_points(scene, terrain, frame, points, collection)
     obj["emitted_from"] = walked["signature"]
+    obj["emitted_source"] = walked["source"]
     obj["skipped"] = int((~landed).sum())
     return obj, int((~landed).sum())
 
@@ -536,7 +539,8 @@ def paint(scene, settings, progress=None):
     walked = walk(scene, settings, _stage(progress, 0.0, 0.4))
     points_obj = find_object(scene, own.FOOTPRINTS, terrain)
     frame = find_object(scene, own.PRINT_FRAME, terrain)
-    emitted = points_obj is None or frame is None or points_obj.get("emitted_from") != walked["signature"]
+    emitted = (points_obj is None or frame is None or points_obj.get("emitted_from") != walked["signature"]
+               or points_obj.get("emitted_source") != walked["source"])
     if emitted:
         points_obj, _ = emit(scene, settings, _stage(progress, 0.4, 0.6), walked)
         frame = find_object(scene, own.PRINT_FRAME, terrain)

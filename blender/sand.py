@@ -22,6 +22,7 @@ from ..node_groups import (
     lit_glints,
     physical_sand,
     ripples,
+    sand_normal,
 )
 from ..node_groups import helper as h
 from . import ownership as own
@@ -179,6 +180,10 @@ def update_material(material, values, image=None, look="PHYSICAL", glint_mode="L
         material[STRUCTURE_KEY] = "/".join((*wanted[:3], "ripples" if wanted[3] else "flat"))
         if kept is not None:  # a rebuilt tree keeps the painted footprints
             attach_footprints(material, *kept)
+        # The grains' size in this scene's units (a centimetre scene: 0.2 units, not 0.002); set on
+        # build only, so an artist's own Grain Size survives a re-run.
+        look_node(material).inputs["Grain Size"].default_value = units.to_units(
+            scene if scene is not None else bpy.context.scene, sand_normal.GRAIN_SIZE)
     node = glint_node(material)
     _glint_aov(material, node)
     sparkle_footprint.attach(node, scene if scene is not None else bpy.context.scene)

@@ -24,4 +24,9 @@ def length_text(scene, units):
     system = scene.unit_settings.system
     if system == "NONE":
         return f"{units:.4g}"
-    return bpy.utils.units.to_string(system, "LENGTH", units * metres_per_unit(scene), precision=3)
+    metres = units * metres_per_unit(scene)
+    text = bpy.utils.units.to_string(system, "LENGTH", metres, precision=3)
+    if metres != 0 and not any(digit in text for digit in "123456789"):
+        # Below the system's smallest unit it prints "0 m": a limit of 1e-7 m would read as 0.
+        return f"{metres:.3g} m" if system == "METRIC" else f"{metres / 0.0254:.3g} in"
+    return text

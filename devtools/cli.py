@@ -18,6 +18,7 @@ import sys
 import time
 
 REPO = pathlib.Path(__file__).resolve().parent.parent
+MAX_FRAME = 1048574  # Blender's frame limit (MAXFRAME), both signs
 
 
 class UsageError(Exception):
@@ -79,8 +80,9 @@ def render_checks(args):
     # Plain, gzip- or zstd-compressed .blend files.
     if not (magic.startswith(b"BLENDER") or magic[:2] == b"\x1f\x8b" or magic[:4] == b"\x28\xb5\x2f\xfd"):
         raise UsageError(f"'{args.file}' is not a .blend file")
-    if any(frame < 0 for frame in args.frame or []):
-        raise UsageError("frames must be 0 or more")
+    outside = [frame for frame in args.frame or [] if abs(frame) > MAX_FRAME]
+    if outside:  # Blender's own range: negative frames are frames too
+        raise UsageError(f"frames must lie in -{MAX_FRAME}..{MAX_FRAME}, got {outside[0]}")
     if args.samples is not None and args.samples < 1:
         raise UsageError(f"samples must be at least 1, got {args.samples}")
     if (args.width is None) != (args.height is None):

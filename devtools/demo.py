@@ -1,11 +1,12 @@
-"""`make demo`: build the desert demo headless, save demo.blend, render out/demo.png and a few
+"""`make demo`: build the desert demo headless, save out/demo.blend, render out/demo.png and a few
 animation frames that show the prints appearing as the walker passes. The still renders at the
 preset of --quality (draft by default, so a newcomer sees the desert in minutes; preview at
 640x360; final is the poster, 1280x720 at the Final preset), the animation at the draft preset
 and half the still's size.
 
-demo.blend is generated here and nowhere else (never edit it by hand); tests/test_demo_blend.py
-checks that the committed file matches a fresh build.
+The committed demo.blend is generated here and nowhere else (never edit it by hand): only
+`make demo-blend` (--blend demo.blend --build-only) writes it; tests/test_demo_blend.py checks that
+it matches a fresh build.
 """
 
 import argparse
@@ -39,7 +40,8 @@ def revealed_print_texels(image, frames):
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--blend", default=str(REPO / "demo.blend"), help="the .blend to write")
+    parser.add_argument("--blend", default=str(REPO / "out" / "demo.blend"), help="the .blend to write")
+    parser.add_argument("--build-only", action="store_true", help="save the .blend, render nothing")
     parser.add_argument("--output", default="out/demo.png", help="the still to render")
     parser.add_argument("--quality", choices=sorted(QUALITIES), default="draft",
                         help="the still's preset and size: " + ", ".join(
@@ -70,7 +72,10 @@ def main(argv=None):
     blend = pathlib.Path(args.blend).resolve()
     blend.parent.mkdir(parents=True, exist_ok=True)
     bpy.ops.wm.save_as_mainfile(filepath=str(blend), compress=True)
-    stages.append(("save demo.blend", time.perf_counter() - mark))
+    stages.append((f"save {blend.name}", time.perf_counter() - mark))
+    if args.build_only:
+        print(f"demo: saved {blend} in {time.perf_counter() - started:.1f} s")
+        return
 
     scene = bpy.context.scene
     output = pathlib.Path(args.output).resolve()

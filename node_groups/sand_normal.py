@@ -16,12 +16,15 @@ DESCRIPTION = "The normal nudged towards a random direction per grain (nlerp by 
 SEED_OFFSET = 0.5  # the grains' directions do not repeat the glints' tilts on the same cells
 
 
+GRAIN_SIZE = 0.002  # metres: medium sand; a scene in other units gets it converted on build
+
+
 def build(tree):
     tree.description = DESCRIPTION
     h.add_input(tree, "Normal", "NodeSocketVector", "Surface normal (unlinked: the shading normal)",
                 (0.0, 0.0, 0.0), subtype=h.SURFACE_NORMAL)
     h.add_input(tree, "Grain Size", "NodeSocketFloat", "Edge of a grain's cell in the object's own units",
-                0.002, 0.0, None, "DISTANCE")
+                GRAIN_SIZE, 0.0, None, "DISTANCE")
     h.add_input(tree, "Strength", "NodeSocketFloat", "0 keeps the normal, 1 turns it to the grain's "
                 "direction", 0.2, 0.0, 1.0, "FACTOR")
     h.add_input(tree, "Seed", "NodeSocketFloat", "Another seed gives other grains", 0.0)
@@ -63,8 +66,8 @@ def build(tree):
 
 def add_grain_inputs(tree, strength_description="How far the grains turn the normal"):
     """The inputs a look passes on to its Sand Normal: Grain Size, Grain Strength, Seed, Normal."""
-    h.add_input(tree, "Grain Size", "NodeSocketFloat", "Edge of a grain in the object's own units", 0.002,
-                0.0, None, "DISTANCE")
+    h.add_input(tree, "Grain Size", "NodeSocketFloat", "Edge of a grain in the object's own units",
+                GRAIN_SIZE, 0.0, None, "DISTANCE")
     h.add_input(tree, "Grain Strength", "NodeSocketFloat", strength_description, 0.15, 0.0, 1.0, "FACTOR")
     h.add_input(tree, "Seed", "NodeSocketFloat", "Another seed gives other grains", 0.0)
     h.add_input(tree, "Normal", "NodeSocketVector", "Surface normal, e.g. the ripples' (unlinked: the "

@@ -111,6 +111,8 @@ class SANDSCAPE_OT_add_sand_material(SandscapeOperator, bpy.types.Operator):
         problem = value_problem(self.properties, self.LIMITS, context.scene) or editable_problem(obj)
         if problem:
             return problem
+        if not obj.data.polygons:  # nothing would show the sand: say so rather than succeed
+            return f"'{obj.name}' has no faces for the sand to cover"
         if self.source == "IMAGE" and self.image and self.image not in bpy.data.images:
             return f"No image named '{self.image}'"
         if self.source == "IMAGE" and not obj.data.uv_layers:

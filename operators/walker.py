@@ -22,6 +22,9 @@ class SANDSCAPE_OT_add_walker(SandscapeOperator, bpy.types.Operator):
         problem = walker.frame_range_problem(start, end)
         if problem:
             return self.fail(problem)
+        if terrain is not None and terrain.type == "MESH" and not terrain.evaluated_get(
+                context.evaluated_depsgraph_get()).data.polygons:
+            return self.fail(f"'{terrain.name}' has no faces to walk on: the walker would never move")
         settings.walker, path = walker.ensure_walker(scene, terrain, start, end)
         settings.source = "WALKER"
         if terrain is not None:

@@ -46,6 +46,7 @@ BAD_INPUT = [
     (["render", "{blend}", "--width", "-10", "--height", "36"], "must lie in 1..65536"),
     (["render", "{blend}", "--output", "frame.gif"], "extension picks the format"),
     (["render", "{blend}", "--samples", "0"], "samples must be at least 1"),
+    (["render", "{blend}", "--frame", "2000000"], "frames must lie in -1048574..1048574"),
     (["build-demo", "--output", "demo.txt"], "must be a .blend"),
     (["build-demo", "--output", "/proc/sandscape/demo.blend"], "cannot write"),
     (["bench", "nope"], "no benchmark 'nope'"),
@@ -62,10 +63,10 @@ def test_bad_input_exits_2_with_one_line(blend, not_a_blend, args, message):
 
 def test_build_then_render_with_the_format_the_extension_picks(blend, tmp_path):
     rendered = run("render", str(blend), "--output", str(tmp_path / "frame.jpg"), "--frame", "5",
-                   "--frame", "9", "--width", "64", "--height", "36", "--samples", "1")
+                   "--frame", "-3", "--width", "64", "--height", "36", "--samples", "1")
     assert rendered.returncode == 0, rendered.stderr
     assert rendered.stdout.count("sandscape: frame") == 2
-    for frame in (5, 9):  # JPEGs, named as asked
+    for frame in (5, -3):  # JPEGs, named as asked; a negative frame is a frame, as in Blender
         assert (tmp_path / f"frame_{frame:04d}.jpg").read_bytes()[:3] == b"\xff\xd8\xff"
     assert not list(tmp_path.glob("*.png"))
 

@@ -1,4 +1,4 @@
-"""The committed demo.blend is what `make demo` builds: same data-block names, same group versions."""
+"""The committed demo.blend is what `make demo-blend` builds: same data-block names, same group versions."""
 
 import pathlib
 
@@ -19,5 +19,5 @@ def test_committed_demo_matches_a_fresh_build(demo_scene):
     fresh = inventory()  # the run's own build (tests/conftest.py)
     bpy.ops.wm.open_mainfile(filepath=str(REPO / "demo.blend"), load_ui=False)
     committed = inventory()
-    assert committed[0] == fresh[0], "demo.blend is stale: run `make demo` and commit it"
-    assert committed[1] == fresh[1], "a node group version changed: run `make demo` and commit demo.blend"
+    assert committed[0] == fresh[0], "demo.blend is stale: run `make demo-blend` and commit it"
+    assert committed[1] == fresh[1], "a node group version changed: run `make demo-blend`, commit demo.blend"

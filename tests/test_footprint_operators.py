@@ -66,6 +66,20 @@ def test_edited_points_are_painted_as_they_are(walk):
     assert points.data.vertices[0].co.x == pytest.approx(-1.0)  # not re-emitted over the edit
 
 
+def test_renaming_the_walker_or_terrain_keeps_edited_points(walk):
+    bpy.ops.sandscape.emit_footprints()
+    points = ours("points")[0]
+    points.data.vertices[0].co.x += 0.5  # the artist moves a print
+    walk.walker.name, walk.terrain.name = "Hero", "Their Dune"
+    bpy.ops.sandscape.paint_footprints()
+    assert points.data.vertices[0].co.x == pytest.approx(-1.0)  # kept: the same walker, renamed
+    other = straight()
+    other.name = "Hero.001"
+    walk.walker = other  # another walker on the same path is another source
+    bpy.ops.sandscape.paint_footprints()
+    assert points.data.vertices[0].co.x == pytest.approx(-1.5)  # emitted again from it
+
+
 def test_cut_and_patch_share_every_face_once(sandscape, walk):
     bpy.ops.sandscape.paint_footprints()
     depsgraph = bpy.context.evaluated_depsgraph_get()
@@ -239,3 +253,15 @@ def test_add_walker_refuses_a_range_too_short_to_walk():
     assert readback.data_snapshot() == before
     result, reports = operators.run_execute("sandscape.add_walker")
     assert result == {"CANCELLED"} and reports[0][0] == {"ERROR"}
+
+
+def test_add_walker_refuses_a_terrain_with_no_faces():
+    mesh = bpy.data.meshes.new("Their Outline")
+    mesh.from_pydata([(0.0, 0.0, 0.0), (5.0, 0.0, 0.0), (5.0, 5.0, 0.0)], [(0, 1), (1, 2)], [])
+    outline = bpy.data.objects.new("Their Outline", mesh)
+    bpy.context.scene.collection.objects.link(outline)
+    bpy.context.view_layer.objects.active = outline
+    before = readback.data_snapshot()
+    with pytest.raises(RuntimeError, match="has no faces to walk on"):
+        bpy.ops.sandscape.add_walker()
+    assert readback.data_snapshot() == before

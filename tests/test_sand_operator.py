@@ -77,6 +77,13 @@ def scene_for(case):
     if case == "not a mesh":
         bpy.ops.curve.primitive_bezier_curve_add()
         return bpy.context.active_object
+    if case == "no faces":
+        mesh = bpy.data.meshes.new("Their Points")
+        mesh.from_pydata([(0.0, 0.0, 0.0), (1.0, 0.0, 0.0)], [(0, 1)], [])
+        obj = bpy.data.objects.new("Their Points", mesh)
+        bpy.context.scene.collection.objects.link(obj)
+        bpy.context.view_layer.objects.active = obj
+        return obj
     obj = readback.uv_plane()
     if case == "no uv map":
         obj.data.uv_layers.remove(obj.data.uv_layers[0])
@@ -94,7 +101,7 @@ def test_without_a_mesh_the_button_is_greyed_out_with_a_reason(case):
 
 
 BAD_INPUT = [
-    ("plane", {"glint_size": 0.0}, "Glint Size"),
+    ("plane", {"glint_size": 0.0}, "Glint Size must lie in 1e-07 m"),  # not "in 0 m .., got 0 m"
     ("plane", {"glint_size": -1.0}, "Glint Size"),
     ("plane", {"glint_size": math.nan}, "Glint Size"),
     ("plane", {"glint_size": math.inf}, "Glint Size"),
@@ -117,6 +124,7 @@ BAD_INPUT = [
     ("plane", {"ripple_variation": 1.5}, "Ripple Variation"),
     ("plane", {"source": "IMAGE", "image": "no such image"}, "No image named"),
     ("no uv map", {"source": "IMAGE"}, "no UV map"),
+    ("no faces", {}, "has no faces"),
 ]
 
 

@@ -271,3 +271,16 @@ def test_a_centimetre_scene_gets_metre_defaults_and_reports_its_units(sandscape)
     bpy.ops.sandscape.add_walker()
     box = ours(bpy.data.objects, "walker")[0]
     assert max(v.co.z for v in box.data.vertices) == pytest.approx(170.0, rel=1e-6)  # a 1.7 m figure
+
+
+@pytest.mark.parametrize("look", ["PHYSICAL", "JOURNEY"])
+def test_a_centimetre_scene_gets_grains_of_two_millimetres(look):
+    bpy.context.scene.unit_settings.scale_length = 0.01
+    bpy.ops.mesh.primitive_plane_add(size=600.0)
+    assert bpy.ops.sandscape.add_sand_material(look=look) == {"FINISHED"}
+    material = bpy.context.active_object.active_material
+    look_node = next(n for n in material.node_tree.nodes if n.name == "Sandscape Look")
+    assert look_node.inputs["Grain Size"].default_value == pytest.approx(0.2, rel=1e-6)  # 2 mm in cm
+    look_node.inputs["Grain Size"].default_value = 0.5  # the artist's own
+    assert bpy.ops.sandscape.add_sand_material(look=look) == {"FINISHED"}
+    assert look_node.inputs["Grain Size"].default_value == pytest.approx(0.5)
