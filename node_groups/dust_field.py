@@ -4,6 +4,7 @@ The seed's open problem: its volumetric light filled all open ground. Here dust 
 field carried by the wind (sampled at position - wind x time), thresholded so there are
 clear and dusty patches, and thinning with height above the ground: exp(-height / falloff).
 Time = Frame / FPS, with Frame driven by the expression `frame` (no Python auto-run).
+Twin: core.dust.dust_field.
 """
 
 from . import helper as h

@@ -41,7 +41,7 @@ def test_rendered_transmittance_matches_the_twin(sandscape):
     expected = air.slab_transmittance(beta, THICKNESS)
     measured = pixels.mean(axis=0)
     assert np.isfinite(pixels).all()
-    assert np.abs(measured / expected - 1.0).max() < 0.02, (measured, expected)
+    assert np.abs(measured / expected - 1.0).max() < 0.005, (measured, expected)  # the README's 0.5 %
     assert measured[2] < measured[1] < measured[0]  # blue is scattered out most
 
 

@@ -23,6 +23,10 @@ def groups(sandscape):
     return module
 
 
+# Float32 round-off on values up to 4: the README's figures are these.
+BLUR_TOLERANCE, RAYS_TOLERANCE = 2e-6, 2e-5
+
+
 def synthetic(seed=0, border=0):
     rng = np.random.default_rng(seed)
     image = np.zeros((H, W, 4))
@@ -40,7 +44,7 @@ def test_gated_blur_matches_its_twin(groups, helper, threshold):
     image = synthetic()
     result = readback.composite_group(group, {"Image": image, "Threshold": threshold}, "Image", (W, H))
     expected = post.gated_blur(image, threshold)
-    assert np.abs(result[..., :3] - expected[..., :3]).max() < 1e-4
+    assert np.abs(result[..., :3] - expected[..., :3]).max() < BLUR_TOLERANCE
     if threshold == 1e9:
         scale = max(1.0, float(np.abs(image).max()))  # gate shut: untouched, to float32 round-off
         assert np.abs(result[..., :3] - image[..., :3]).max() <= 1e-6 * scale
@@ -64,7 +68,7 @@ def test_gated_blur_keeps_the_guides_outlines_sharp(groups, helper, edge):
     values = {"Image": image, "Threshold": 0.0, "Guide": guide, "Edge": edge}
     result = readback.composite_group(group, values, "Image", (W, H))
     expected = post.gated_blur(image, 0.0, guide, edge)
-    assert np.abs(result[..., :3] - expected[..., :3]).max() < 1e-4
+    assert np.abs(result[..., :3] - expected[..., :3]).max() < BLUR_TOLERANCE
     outline = post.guide_edges(guide, edge)
     rows, cols = np.mgrid[:H, :W]
     ring = np.abs(np.hypot(rows - 16, cols - 20) - 8.0) < 1.0
@@ -93,5 +97,5 @@ def test_god_rays_match_their_twin(groups, helper, sun, samples, density, weight
               "Decay": decay, "Exposure": 1.5, "Intensity": 0.8}
     result = readback.composite_group(group, values, "Rays", (W, H))
     expected = post.god_rays(occlusion[..., :3], sun, samples, density, weight, decay, 1.5 * 0.8)
-    assert np.abs(result[..., :3] - expected).max() < 1e-3
+    assert np.abs(result[..., :3] - expected).max() < RAYS_TOLERANCE
     assert expected.max() > 0.1  # there are rays to compare
