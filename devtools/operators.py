@@ -6,6 +6,13 @@ import types
 import bpy
 
 
+def is_refusal(error):
+    """True when a RuntimeError from bpy.ops is an operator's own ERROR report (a refusal), not a
+    Python traceback inside it or a failed poll."""
+    text = str(error)
+    return text.startswith("Error: ") and "Traceback" not in text and "poll()" not in text
+
+
 def run_execute(idname, context=None, **props):
     """execute() of operator `idname` ("sandscape.paint_footprints") on a stand-in for the operator:
     its property defaults, then props, and its own methods. Returns (result set, [(kinds, text)])."""

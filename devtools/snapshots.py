@@ -3,7 +3,8 @@ unlinked input values) and links, as JSON in tests/snapshots/. A builder that ch
 must bump its VERSION (files built by the old one are then rebuilt); the snapshot test fails
 when the group changed and the VERSION did not.
 
-Update after a deliberate change (and a VERSION bump):
+Update after a deliberate change (and a VERSION bump; a changed group at its old VERSION is
+refused, so the snapshot cannot be brought in line without one):
     .venv/bin/python devtools/snapshots.py
 """
 
@@ -116,11 +117,25 @@ def main():
     session.install_dev_extension(root)
     session.reset()
     SNAPSHOTS.mkdir(parents=True, exist_ok=True)
+    refused = []
     for builder in importlib.import_module(f"{session.MODULE}.node_groups.catalog").builders():
         snapshot = {"version": builder.VERSION, "group": serialize(build_fresh(bpy, builder))}
+        path = path_for(builder)
+        if path.is_file():
+            stored = json.loads(path.read_text())
+            changed = json.loads(json.dumps(snapshot["group"])) != stored["group"]
+            if changed and builder.VERSION <= stored["version"]:
+                # No way round the version test: a changed group needs a higher VERSION first.
+                refused.append(f"{builder.NAME} changed at VERSION {builder.VERSION} (snapshot at "
+                               f"{stored['version']}): bump VERSION in its builder")
+                continue
         text = json.dumps(snapshot, indent=1, ensure_ascii=False, sort_keys=True)
-        path_for(builder).write_text(text + "\n")
-        print(f"snapshots: {builder.NAME} v{builder.VERSION} -> {path_for(builder).relative_to(REPO)}")
+        path.write_text(text + "\n")
+        print(f"snapshots: {builder.NAME} v{builder.VERSION} -> {path.relative_to(REPO)}")
+    for line in refused:
+        print(f"snapshots: refused: {line}", file=sys.stderr)
+    if refused:
+        sys.exit(1)
 
 
 if __name__ == "__main__":

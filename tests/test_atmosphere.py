@@ -77,7 +77,10 @@ def test_sky_sun_matches_the_lamp():
     lamp = np.array(sun.matrix_world.col[2][:3])  # a sun shines along its -Z
     seen = mirror_ball_sun_direction()
     assert math.degrees(math.acos(min(1.0, float(seen @ lamp)))) < 1.0
-    assert lamp == pytest.approx(air.sun_direction(math.radians(35), math.radians(60)), abs=1e-6)
+    # Azimuth as on a compass, from north (+Y) toward east (+X): the settings' own description.
+    up, around = math.radians(35), math.radians(60)
+    compass = (math.cos(up) * math.sin(around), math.cos(up) * math.cos(around), math.sin(up))
+    assert lamp == pytest.approx(compass, abs=1e-6)
 
 
 def test_the_camera_sees_the_sun_disc_and_the_lighting_does_not():

@@ -1,8 +1,21 @@
 """Quality presets: each sets exactly its measured settings, denoising in the compositor; the CLI
 takes --preset."""
 
+import pathlib
+import re
+
 import bpy
 import pytest
+
+README = pathlib.Path(__file__).resolve().parent.parent / "README.md"
+
+
+def readme_preset(name):
+    """(samples, volume step rate) of a preset as the README's preset table states them."""
+    row = re.search(rf"^\| {name.title()} \| (\d+)[^|]*\| ray marched, step rate ([\d.]+) \|",
+                    README.read_text(), re.MULTILINE)
+    assert row, f"no {name.title()} row in the README's preset table"
+    return int(row.group(1)), float(row.group(2))
 
 
 @pytest.mark.parametrize("name", ["DRAFT", "PREVIEW", "FINAL"])
@@ -18,6 +31,8 @@ def test_preset_sets_its_settings(sandscape, name):
             assert getattr(scene.cycles, key) == value, key
         else:
             assert getattr(scene.cycles, key) == pytest.approx(value), key
+    # What the README tells artists, not only the dict the operator reads.
+    assert (scene.cycles.samples, scene.cycles.volume_step_rate) == pytest.approx(readme_preset(name))
     # The compositor denoises all but the glints; Cycles' denoiser would smear them first.
     assert scene.sandscape_post.use_denoise and not scene.cycles.use_denoising
     tree = sandscape.blender.ownership.scene_compositor(scene)

@@ -10,14 +10,25 @@ from devtools import operators, readback
 
 
 class RecordingLayout:
+    """Records what a draw() puts in the layout, and refuses what Blender's layout would not draw:
+    an operator, menu or property that does not exist."""
+
     def __init__(self):
         self.calls = []
 
     def operator(self, idname, **kwargs):
+        module, name = idname.split(".")
+        assert name in dir(getattr(bpy.ops, module)), f"no operator {idname}"
         self.calls.append(("operator", idname, kwargs.get("text")))
-        return types.SimpleNamespace()  # takes the properties a menu or panel sets on the button
+        rna = getattr(getattr(bpy.ops, module), name).get_rna_type()
+
+        def set_property(button, key, value):  # a button takes only its operator's properties
+            assert key in rna.properties.keys(), f"{idname} has no property {key}"
+            object.__setattr__(button, key, value)
+        return type("Button", (), {"__setattr__": set_property})()
 
     def menu(self, idname, **kwargs):
+        assert hasattr(bpy.types, idname), f"no menu {idname}"
         self.calls.append(("menu", idname, kwargs.get("text")))
 
     def separator(self, **kwargs):
@@ -27,12 +38,14 @@ class RecordingLayout:
         return self
 
     def prop(self, data, name, text=None, **kwargs):
+        assert name in data.bl_rna.properties.keys(), f"{data!r} has no property {name}"
         self.calls.append(("prop", data, name, text))
 
     def label(self, text="", **kwargs):
         self.calls.append(("label", text))
 
     def template_ID(self, data, name, **kwargs):
+        assert name in data.bl_rna.properties.keys(), f"{data!r} has no property {name}"
         self.calls.append(("template_ID", data, name))
 
     def column(self, **kwargs):
