@@ -50,7 +50,7 @@ def follow_camera(scene, figure, terrain):
     scene.frame_set(FRAMES[0])
     places = np.array(places)
     top = float(np.max([v[2] for v in terrain.bound_box]))
-    floor = walker.ground_heights(terrain, places[:, :2], top) + CAMERA_CLEARANCE
+    floor = walker.ground_heights(scene, terrain, places[:, :2], top) + CAMERA_CLEARANCE
     places[:, 2] = np.maximum(places[:, 2], eased_lift(floor))
     for frame, place in zip(frames, places, strict=True):
         camera.location = tuple(place)

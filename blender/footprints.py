@@ -27,7 +27,7 @@ from ..core import footprints as painter
 from ..core import paths
 from ..node_groups import helper as h
 from ..node_groups import print_markers, region_cut
-from . import compat, sand, units
+from . import compat, evaluation, sand, units
 from . import ownership as own
 
 ATTRIBUTES = {  # point attribute name -> (type, meaning)
@@ -102,7 +102,9 @@ def sample_walker(scene, walker, frames, progress=None):
     try:
         for index, frame in enumerate(frames):
             scene.frame_set(int(frame))
-            positions[index] = walker.matrix_world.translation
+            # The evaluated object: only the shown scene's depsgraph writes back to the original.
+            evaluated = walker.evaluated_get(evaluation.scene_depsgraph(scene))
+            positions[index] = evaluated.matrix_world.translation
             if progress:
                 progress(index / len(frames))
     finally:
@@ -118,7 +120,7 @@ def sample_particles(scene, emitter, frames):
     try:
         for frame in frames:
             scene.frame_set(int(frame))
-            depsgraph = bpy.context.evaluated_depsgraph_get()
+            depsgraph = evaluation.scene_depsgraph(scene)
             evaluated = emitter.evaluated_get(depsgraph)
             if not evaluated.particle_systems:
                 raise FootprintError(f"'{emitter.name}' has no particle system")
@@ -149,9 +151,9 @@ def sample_particles(scene, emitter, frames):
                  for found in (found_positions, found_births, found_directions))
 
 
-def evaluated_terrain(terrain):
+def evaluated_terrain(scene, terrain):
     """The terrain's evaluated mesh without our cut, in world space: (vertices (V, 3), polygons)."""
-    depsgraph = bpy.context.evaluated_depsgraph_get()
+    depsgraph = evaluation.scene_depsgraph(scene)
     with terrain_uncut(terrain):
         depsgraph.update()
         evaluated = terrain.evaluated_get(depsgraph)
@@ -349,7 +351,7 @@ def ensure_patch(scene, terrain, frame, low, high, collection, pixel_size=1.0):
     terrain), so shading does not change at its border.
     Returns the patch object, or None when no face of the terrain lies in the region.
     """
-    depsgraph = bpy.context.evaluated_depsgraph_get()
+    depsgraph = evaluation.scene_depsgraph(scene)
     with terrain_uncut(terrain):
         depsgraph.update()
         evaluated = terrain.evaluated_get(depsgraph)
@@ -491,7 +493,7 @@ def walk(scene, settings, progress=None):
         steps = {"contact": contacts, "birth": births, "forward": forward,
                  "side": np.zeros(len(contacts), np.int32)}
         motion = np.concatenate([contacts, births[:, None]], axis=1)
-    vertices, polygons = evaluated_terrain(terrain)
+    vertices, polygons = evaluated_terrain(scene, terrain)
     source = settings.walker if settings.source == "WALKER" else settings.particle_object
     # The source and terrain by identity, not name: renaming either keeps the prints (the points
     # object names its terrain by pointer; the source is kept beside the signature).

@@ -32,17 +32,20 @@ def display_white(scene):
     return 2.0 ** -scene.view_settings.exposure
 
 
-def build(tree, settings, white=1.0, image_denoised=False):
+def build(tree, settings, white=1.0, image_denoised=False, scene=None):
     """(Re)build the tree for the settings: use_denoise, use_blur, blur_threshold, use_god_rays, ...
 
     image_denoised: Cycles denoises the combined image (not the passes), so the gated blur
-    denoises the scattered light it swaps in."""
+    denoises the scattered light it swaps in. scene: whose render layers the tree reads (default:
+    the context's)."""
     tree.nodes.clear()
     if not tree.interface.items_tree:
         h.add_output(tree, "Image", "NodeSocketColor", "The composited frame")
     tree.description = ("Sandscape post effects: denoising of all but the glints, gated blur of the "
                         "scattered light, god rays")
     layers = h.add_node(tree, "CompositorNodeRLayers", name="Sandscape Render Layers")
+    if scene is not None:  # a scene not shown: its own layers, not the shown scene's
+        layers.scene = scene
     output = h.add_node(tree, "NodeGroupOutput", name="Sandscape Composite")
     image = layers.outputs["Image"]
     if settings.use_denoise:
@@ -275,7 +278,7 @@ def apply_post_effects(scene, settings):
     switched_denoiser = settings.use_denoise and scene.cycles.use_denoising
     if settings.use_denoise:
         scene.cycles.use_denoising = False
-    build(ours, settings, display_white(scene), scene.cycles.use_denoising)
+    build(ours, settings, display_white(scene), scene.cycles.use_denoising, scene)
     ours["fade"] = settings.fade
     scene.compositing_node_group = ours
     scene.render.use_compositing = True

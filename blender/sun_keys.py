@@ -4,12 +4,11 @@ Sandscape renders the keys. Made again only when the digest of what they depend 
 shot.
 """
 
-import bpy
 import numpy as np
 
 from ..core import post
+from . import evaluation, shot, view_digest
 from . import ownership as own
-from . import shot, view_digest
 
 SUN_KEY, RAYS = "Sandscape Sun Key", "Sandscape God Rays"  # node names in the post tree
 DIGEST_KEY = "sandscape_sun_digest"  # on the tree: the view digest its sun keys were made for
@@ -23,8 +22,11 @@ def sun_key_node(tree):
     return own.node(tree, SUN_KEY)
 
 
-def view_projection(scene, camera):
-    depsgraph = bpy.context.evaluated_depsgraph_get()
+def view_projection(scene, camera, depsgraph=None):
+    """World to clip space of the camera as the scene renders it; camera as evaluated in depsgraph
+    (default: the scene's own)."""
+    depsgraph = depsgraph or evaluation.scene_depsgraph(scene)
+    camera = camera.evaluated_get(depsgraph)
     render = scene.render
     width = max(render.resolution_x * render.resolution_percentage // 100, 1)
     height = max(render.resolution_y * render.resolution_percentage // 100, 1)
@@ -40,8 +42,10 @@ def sun_curve(scene, sun, fade):
     try:
         for frame in range(scene.frame_start, scene.frame_end + 1):
             scene.frame_set(frame)
-            direction = np.array(sun.matrix_world.col[2][:3])
-            (u, v), in_front = post.screen_position(view_projection(scene, scene.camera), direction)
+            depsgraph = evaluation.scene_depsgraph(scene)  # a scene not shown: its own evaluation
+            direction = np.array(sun.evaluated_get(depsgraph).matrix_world.col[2][:3])
+            projection = view_projection(scene, scene.camera, depsgraph)
+            (u, v), in_front = post.screen_position(projection, direction)
             intensity = post.sun_intensity((u, v), in_front, fade)
             if not in_front or not np.isfinite((u, v)).all():
                 u, v = 0.5, 0.5  # any finite place: the intensity is 0

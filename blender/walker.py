@@ -15,8 +15,8 @@ from bpy_extras import anim_utils
 from mathutils import Matrix, Vector
 from mathutils.bvhtree import BVHTree
 
+from . import evaluation, units
 from . import ownership as own
-from . import units
 
 WALK_SPEED = 1.4  # metres per second: a walking pace
 PATH_STEP = 0.25  # metres between path points laid on the ground
@@ -42,7 +42,7 @@ def ensure_walker(scene, terrain, start, end):
     """The scene's stand-in walker and its path, made or updated. Returns (walker, path)."""
     path = own.scene_object(scene, own.WALK_PATH) or _new_path(scene)
     fps = scene.render.fps / scene.render.fps_base
-    _shape_path(path, terrain, units.to_units(scene, (end - start) / fps * WALK_SPEED),
+    _shape_path(scene, path, terrain, units.to_units(scene, (end - start) / fps * WALK_SPEED),
                 units.to_units(scene, PATH_STEP))
     walker = own.scene_object(scene, own.WALKER) or _new_walker(scene, path)
     _stay_upright(walker)
@@ -58,7 +58,7 @@ def _new_path(scene):
     return path
 
 
-def _shape_path(path, terrain, length, step):
+def _shape_path(scene, path, terrain, length, step):
     """A gentle S `length` units along X through the terrain's middle (at most TERRAIN_SHARE of
     its world X extent), or through the origin without a terrain."""
     centre, top = np.zeros(3), 0.0
@@ -73,7 +73,7 @@ def _shape_path(path, terrain, length, step):
     points = np.stack([centre[0] + (t - 0.5) * length, centre[1] + sway * np.sin(2 * math.pi * t),
                        np.full(count, top)], axis=-1)
     if terrain is not None:
-        points[:, 2] = ground_heights(terrain, points[:, :2], top)
+        points[:, 2] = ground_heights(scene, terrain, points[:, :2], top)
     curve = path.data
     curve.splines.clear()
     spline = curve.splines.new("BEZIER")
@@ -83,12 +83,12 @@ def _shape_path(path, terrain, length, step):
         point.handle_left_type = point.handle_right_type = "AUTO"
 
 
-def ground_heights(terrain, xy, top):
+def ground_heights(scene, terrain, xy, top):
     """World Z of the terrain's evaluated surface under each (x, y), cast down from above `top`
     (its highest point); the original mesh where the evaluated one has none (the footprint cut
     leaves a hole where the patch takes over), else `top`. The walk path is laid on these, so
     the stand-in's feet touch the ground."""
-    evaluated = terrain.evaluated_get(bpy.context.evaluated_depsgraph_get())
+    evaluated = terrain.evaluated_get(evaluation.scene_depsgraph(scene))
     world = np.array(terrain.matrix_world)
     to_local = np.linalg.inv(world)
     down = Vector(to_local[:3, :3] @ np.array([0.0, 0.0, -1.0]))

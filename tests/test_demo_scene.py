@@ -46,8 +46,8 @@ def test_every_frame_the_camera_is_above_the_sand_and_the_walker_on_it(sandscape
         feet.append(np.array(walker.matrix_world.translation))
     cameras, feet = np.array(cameras), np.array(feet)
     ground = sandscape.blender.walker.ground_heights
-    assert (cameras[:, 2] - ground(terrain, cameras[:, :2], top)).min() > 0.5
-    assert np.abs(feet[:, 2] - ground(terrain, feet[:, :2], top)).max() < 0.05
+    assert (cameras[:, 2] - ground(scene, terrain, cameras[:, :2], top)).min() > 0.5
+    assert np.abs(feet[:, 2] - ground(scene, terrain, feet[:, :2], top)).max() < 0.05
     assert np.linalg.norm(np.diff(cameras, axis=0), axis=1).max() < 0.2  # no jumps: 1.4 m/s is 6 cm a frame
 
 

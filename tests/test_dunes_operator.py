@@ -210,7 +210,7 @@ def feet_above_sand(sandscape, field, walker):
     for frame in range(1, 97, 8):
         bpy.context.scene.frame_set(frame)
         position = np.array(walker.matrix_world.translation)
-        ground = sandscape.blender.walker.ground_heights(field, position[None, :2], top)[0]
+        ground = sandscape.blender.walker.ground_heights(bpy.context.scene, field, position[None, :2], top)[0]
         heights.append(position[2] - ground)
     return np.abs(heights).max()
 
@@ -235,7 +235,7 @@ def test_the_walker_walks_on_the_dunes_and_its_prints_paint(sandscape):
     corners = local_vertices(patch) @ to_world[:3, :3].T + to_world[:3, 3]
     top = float(np.max([v[2] for v in field.bound_box]))
     with sandscape.blender.footprints.terrain_uncut(field):
-        ground = sandscape.blender.walker.ground_heights(field, corners[:, :2], top)
+        ground = sandscape.blender.walker.ground_heights(bpy.context.scene, field, corners[:, :2], top)
     assert np.abs(corners[:, 2] - ground).max() < 0.02  # the patch lies on the new sand
 
 

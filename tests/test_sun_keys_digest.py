@@ -121,3 +121,35 @@ def test_motion_the_digest_cannot_see_always_re_keys(shot, sandscape):
     assert saved_steps(path) > 0
     assert saved_steps(path) > 0
     assert keys_are_current(scene, sandscape)
+
+
+def test_a_scene_not_shown_is_keyed_from_its_own_evaluation(tmp_path, sandscape):
+    """Saving keys every scene's sun: one the context does not show is evaluated in its own view
+    layer (its original objects are not moved by frame_set). Its camera pans 20 degrees across a
+    sun on the horizon; a 35 mm lens on a 36 mm sensor puts the sun (35 / 36) tan 10 degrees off
+    the centre at either end, on opposite sides."""
+    shown = bpy.context.scene
+    other = bpy.data.scenes.new("Other Shot")
+    other.frame_start, other.frame_end = 1, 31
+    camera = scenes.camera("PERSP", location=(0.0, 0.0, 1.0), rotation=(math.pi / 2, 0.0, 0.0), lens=35)
+    other.collection.objects.link(camera)
+    shown.collection.objects.unlink(camera)
+    other.camera = camera
+    sun = bpy.data.objects.new("Their Sun", bpy.data.lights.new("Their Sun", "SUN"))
+    sun.rotation_euler = (math.radians(-89.5), 0.0, 0.0)  # shining along -Y, 0.5 degrees up
+    other.collection.objects.link(sun)
+    # As a script would, without showing the scene (an operator override would make its
+    # depsgraph the active one, which writes back to the objects).
+    other.sandscape_post.use_blur = other.sandscape_post.use_denoise = False
+    sandscape.blender.post.apply_post_effects(other, other.sandscape_post)
+    for frame, yaw in ((1, 10.0), (31, -10.0)):  # keyed after the rays: the keys are stale now
+        camera.rotation_euler.z = math.radians(yaw)
+        camera.keyframe_insert("rotation_euler", index=2, frame=frame)
+    assert bpy.context.scene == shown
+    bpy.ops.wm.save_as_mainfile(filepath=str(tmp_path / "two.blend"))
+    keyed = sandscape.blender.sun_keys.keyed_curve(other.compositing_node_group)
+    offset = 35.0 / 36.0 * math.tan(math.radians(10.0))
+    u_first, u_last = keyed[0][1], keyed[-1][1]
+    assert abs(u_first - 0.5) == pytest.approx(offset, abs=2e-3)
+    assert abs(u_last - 0.5) == pytest.approx(offset, abs=2e-3)
+    assert (u_first - 0.5) * (u_last - 0.5) < 0

@@ -284,3 +284,25 @@ def test_a_centimetre_scene_gets_grains_of_two_millimetres(look):
     look_node.inputs["Grain Size"].default_value = 0.5  # the artist's own
     assert bpy.ops.sandscape.add_sand_material(look=look) == {"FINISHED"}
     assert look_node.inputs["Grain Size"].default_value == pytest.approx(0.5)
+
+
+def test_prints_in_a_scene_not_shown_land_on_its_evaluated_ground(sandscape):
+    """A script paints a scene other than the one the context shows: its terrain is evaluated in
+    its own view layer (raised 1 m by a modifier there), not looked up in the shown scene's."""
+    shown = bpy.context.scene
+    terrain = scenes.height_field(6.0, 12, name="Their Sand")
+    raise_up = terrain.modifiers.new("Raise", "DISPLACE")
+    raise_up.strength, raise_up.mid_level = 1.0, 0.0  # no texture: 1 m along the normal
+    walker = scenes.keyframed_walker(lambda f: (-1.5 + 0.1 * (f - 1), 0.0, 2.0), range(1, 32))
+    other = bpy.data.scenes.new("Other Shot")
+    for obj in (terrain, walker):
+        other.collection.objects.link(obj)
+        shown.collection.objects.unlink(obj)
+    other.frame_start, other.frame_end = 1, 31
+    settings = other.sandscape_footprints
+    settings.terrain, settings.walker, settings.resolution = terrain, walker, 256
+    assert bpy.context.scene == shown
+    sandscape.blender.footprints.paint(other, settings)
+    points = next(o for o in other.objects if o.get("sandscape_object") == "footprints")
+    heights = [(points.matrix_world @ v.co).z for v in points.data.vertices]
+    assert len(heights) >= 3 and heights == pytest.approx([1.0] * len(heights), abs=1e-4)

@@ -1,0 +1,27 @@
+"""The evaluated depsgraph of the scene being worked on, not of whatever the context shows.
+
+bpy.context.evaluated_depsgraph_get() is the context's view layer: under
+`context.temp_override(scene=other)`, or for a scene passed in by a script while another is
+shown, it evaluates the wrong scene, and objects of the scene passed in come back unevaluated.
+"""
+
+import bpy
+
+
+def scene_view_layer(scene):
+    """The view layer worked on in this scene: the context's when it shows this scene, else the
+    first layer that renders (else the first)."""
+    context_layer = getattr(bpy.context, "view_layer", None)
+    if bpy.context.scene == scene and context_layer is not None and context_layer in scene.view_layers[:]:
+        return context_layer
+    return next((layer for layer in scene.view_layers if layer.use), scene.view_layers[0])
+
+
+def scene_depsgraph(scene):
+    """That view layer's depsgraph, evaluated."""
+    layer = scene_view_layer(scene)
+    if layer == getattr(bpy.context, "view_layer", None):
+        return bpy.context.evaluated_depsgraph_get()
+    depsgraph = layer.depsgraph
+    depsgraph.update()
+    return depsgraph
