@@ -1,9 +1,9 @@
 """Shared node-group plumbing: versioned, idempotent groups, terse tree building, and a layout
 that reads left to right.
 
-A group we build carries two custom properties: GROUP_KEY (the builder's NAME) and
-VERSION_KEY. We find our groups by GROUP_KEY, never by name, so a user's group that
-happens to share the name is left alone.
+A group we build carries custom properties: GROUP_KEY (the builder's NAME), VERSION_KEY and a
+fingerprint of what was built (versions.py: never downgraded, an artist's edit kept). We find our
+groups by GROUP_KEY, never by name, so a user's group that happens to share the name is left alone.
 
 Builders create nodes anywhere, put the nodes of each stage in a frame (frame()), and end
 with arrange(tree): columns by dependency, frames stacked as bands, no two nodes overlapping.
@@ -11,36 +11,7 @@ with arrange(tree): columns by dependency, frames stacked as bands, no two nodes
 
 import bpy
 
-GROUP_KEY = "sandscape_group"
-VERSION_KEY = "sandscape_version"
-
-
-def find_group(name):
-    for group in bpy.data.node_groups:
-        if group.get(GROUP_KEY) == name:
-            return group
-    return None
-
-
-def ensure_group(builder):
-    """Return our group for a builder module, (re)building it when its version changed.
-
-    A rebuilt group takes over every user of the old one (user_remap), so materials
-    keep working; then the old one is removed and the new one takes its name.
-    """
-    old = find_group(builder.NAME)
-    if old is not None and old.get(VERSION_KEY) == builder.VERSION:
-        return old
-    new = bpy.data.node_groups.new(builder.NAME, builder.TREE_TYPE)
-    new[GROUP_KEY] = builder.NAME
-    new[VERSION_KEY] = builder.VERSION
-    builder.build(new)
-    if old is not None:
-        old.user_remap(new)
-        bpy.data.node_groups.remove(old)
-        new.name = builder.NAME
-    return new
-
+from .versions import GROUP_KEY, VERSION_KEY, ensure_group, find_group  # noqa: F401 (the builders' API)
 
 GROUP_NODE_TYPES = {"ShaderNodeTree": "ShaderNodeGroup", "CompositorNodeTree": "CompositorNodeGroup",
                     "GeometryNodeTree": "GeometryNodeGroup"}

@@ -3,8 +3,8 @@
 import bpy
 
 from ..blender import atmosphere, ownership, units
+from ..blender.settings import SandscapeAtmosphereSettings
 from ..core import atmosphere as air
-from ..ui.properties import SandscapeAtmosphereSettings
 from .base import SandscapeOperator, editable_problem, value_problem
 
 

@@ -5,13 +5,32 @@ poll() answers "can this run here at all?" (a mesh is active, a terrain is set);
 are out of range, NaN or inf are execute()'s to refuse, with an ERROR report and CANCELLED.
 """
 
+import functools
 import math
 
 from ..blender import ownership, shot, units
+from ..node_groups import versions
 
 
 class SandscapeOperator:
     bl_options = {"REGISTER", "UNDO"}
+
+    def __init_subclass__(cls, **kwargs):
+        """Each operator also reports what happened to node groups it did not rebuild (a newer
+        file's kept, an artist's edited one kept beside ours): node_groups/versions.py."""
+        super().__init_subclass__(**kwargs)
+        execute = cls.__dict__.get("execute")
+        if execute is None:
+            return
+
+        @functools.wraps(execute)
+        def execute_and_report(self, context):
+            versions.drain_notes()  # notes from before this run are not this run's
+            result = execute(self, context)
+            for note in versions.drain_notes():
+                self.report({"INFO"}, f"Node groups: {note}")
+            return result
+        cls.execute = execute_and_report
 
     # (condition(context) -> bool, message) pairs that poll() checks in order.
     POLL = ()

@@ -3,7 +3,7 @@
 import bpy
 
 from ..blender import clouds, ownership, units
-from ..ui.properties import CLOUD_LIMITS, cloud_fields
+from ..blender.settings import CLOUD_LIMITS, cloud_fields
 from .base import SandscapeOperator, SceneSettings, editable_problem, has_camera, value_problem
 
 FIELDS = cloud_fields(True)

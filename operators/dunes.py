@@ -6,8 +6,8 @@ import bpy
 
 from ..blender import dunes, ownership, units
 from ..blender.progress import Progress
+from ..blender.settings import DUNE_LIMITS, dune_fields
 from ..core import dunes as model
-from ..ui.properties import DUNE_LIMITS, dune_fields
 from .base import SandscapeOperator, SceneSettings, editable_problem, value_problem
 
 FIELDS = dune_fields(True)

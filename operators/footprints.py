@@ -6,7 +6,7 @@ They read the scene's Sandscape footprint settings (scene.sandscape_footprints).
 import bpy
 
 from ..blender import footprints, units
-from ..ui.properties import SandscapeFootprintSettings
+from ..blender.settings import SandscapeFootprintSettings
 from .base import SandscapeOperator, value_problem
 
 

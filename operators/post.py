@@ -3,8 +3,8 @@
 import bpy
 
 from ..blender import atmosphere, post
+from ..blender.settings import SandscapePostSettings
 from ..core import post as post_twin
-from ..ui.properties import SandscapePostSettings
 from .base import SandscapeOperator, has_camera, value_problem
 
 

@@ -49,17 +49,26 @@ def glints_group(sandscape):
 
 
 @pytest.fixture(scope="session")
-def demo_file(tmp_path_factory):
-    """The demo built once for the run and saved: building it takes seconds, opening it one.
-    Its clouds on 200 m voxels: the demo's 50 m grid took 5 s to evaluate at every opening and
-    6 s of every render after a change to the view layer (tests of the demo itself build it)."""
+def demo_files(tmp_path_factory):
+    """The demo built once for the run and saved twice: as built (the committed demo.blend's
+    counterpart) and with its clouds on 200 m voxels, which most tests open: the demo's 50 m grid
+    took 5 s to evaluate at every opening and 6 s of every render after a change to the view
+    layer. Building takes seconds, opening one."""
     session.reset()
     assert bpy.ops.sandscape.build_demo_scene() == {"FINISHED"}
+    folder = tmp_path_factory.mktemp("demo")
+    built = folder / "built.blend"
+    bpy.ops.wm.save_as_mainfile(filepath=str(built), copy=True)
     bpy.context.scene.sandscape_clouds.voxel = 200.0
     assert bpy.ops.sandscape.add_clouds() == {"FINISHED"}
-    path = tmp_path_factory.mktemp("demo") / "demo.blend"
-    bpy.ops.wm.save_as_mainfile(filepath=str(path), copy=True)
-    return path
+    coarse = folder / "demo.blend"
+    bpy.ops.wm.save_as_mainfile(filepath=str(coarse), copy=True)
+    return {"built": built, "coarse": coarse}
+
+
+@pytest.fixture
+def demo_file(demo_files):
+    return demo_files["coarse"]
 
 
 @pytest.fixture

@@ -107,9 +107,9 @@ def test_demo_renders_identically_without_the_extension(demo_scene, tmp_path):
     assert np.abs(without - with_addon).max() <= 1e-6
 
 
-def test_committed_demo_opens_and_renders_on_this_blender():
+def test_committed_demo_opens_and_renders_on_this_blender(demo_files):
     """demo.blend, saved by the default Blender, opens here with the extension off and loses nothing."""
-    bpy.ops.sandscape.build_demo_scene()
+    bpy.ops.wm.open_mainfile(filepath=str(demo_files["built"]), load_ui=False)  # this run's fresh build
     fresh, fresh_links = small_render(bpy.context.scene), links()
     with extension_off():
         bpy.ops.wm.open_mainfile(filepath=str(REPO / "demo.blend"), load_ui=False)

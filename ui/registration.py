@@ -7,12 +7,12 @@ before they go.
 
 import bpy
 
-from ..blender import post_handlers, sparkle_footprint
+from ..blender import post_handlers, settings, sparkle_footprint
 from ..operators import atmosphere, clouds, demo, dunes, footprints, nodes, render, sand, walker
 from ..operators import post as post_operators
-from . import menus, panels, properties
+from . import menus, panels
 
-MODULES = (properties, dunes, sand, walker, footprints, atmosphere, clouds, post_operators, demo, render,
+MODULES = (settings, dunes, sand, walker, footprints, atmosphere, clouds, post_operators, demo, render,
            nodes, panels, menus, post_handlers, sparkle_footprint)
 
 

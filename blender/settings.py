@@ -24,8 +24,8 @@ from bpy.props import (
     StringProperty,
 )
 
-from ..blender import units
 from ..node_groups import footprint_height
+from . import units
 
 DEPTH = footprint_height.INPUTS["Depth"]
 RIM = footprint_height.INPUTS["Rim"]
