@@ -1,6 +1,7 @@
 # make demo: venv + pinned deps, build the demo scene headless, save out/demo.blend, render out/demo.png
 # make demo-blend: regenerate the committed demo.blend (after a change to the demo or a node group)
-# make test: venv + pinned deps, ruff, then the whole pytest suite
+# make test: venv + pinned deps, ruff, then the pytest suite but its stress tests
+# make stress: the stress tests (settings at their extremes, the largest maps); CI runs both
 #
 # BLENDER picks the bpy the commands run on, each in its own venv:
 #   5.2 (default, the current LTS): bpy 5.2.3 on Python 3.13, .venv, requirements.txt
@@ -22,7 +23,7 @@ PYTHON ?= $(shell sh devtools/find-python $(PYTHON_VERSION))
 PY := $(VENV)/bin/python
 STAMP := $(VENV)/.installed
 
-.PHONY: demo demo-blend test lint bench clean
+.PHONY: demo demo-blend test stress lint bench clean
 
 # A venv made by another Python (an older checkout's, or the other Blender's) is made anew.
 $(STAMP): $(REQUIREMENTS)
@@ -45,7 +46,10 @@ lint: $(STAMP)
 	$(VENV)/bin/ruff check .
 
 test: lint
-	$(PY) -m pytest
+	$(PY) -m pytest -m "not stress"
+
+stress: $(STAMP)
+	$(PY) -m pytest -m stress
 
 bench: $(STAMP)
 	$(PY) -m pip install --disable-pip-version-check -q -r requirements-bench.txt

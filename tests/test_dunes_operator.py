@@ -257,6 +257,7 @@ def slider_cases():
     return cases
 
 
+@pytest.mark.stress
 def test_every_setting_at_its_slider_ends_builds_finite_land_or_is_refused():
     """From the small field, each setting to each end of its slider (and all at once): the
     operator finishes with finite land no steeper than repose, or refuses with a report."""

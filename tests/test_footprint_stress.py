@@ -12,6 +12,8 @@ import pytest
 
 from devtools import scenes
 
+pytestmark = pytest.mark.stress  # make stress, not make test
+
 
 def paint_and_report(settings):
     """Run the paint operator's execute and return its reports and the print map's pixels."""
