@@ -25,3 +25,9 @@ def scene_depsgraph(scene):
     depsgraph = layer.depsgraph
     depsgraph.update()
     return depsgraph
+
+
+def world_matrix(scene, obj):
+    """The object's world matrix as the scene evaluates it: an object's own matrix_world is only
+    brought up to date by the shown scene's depsgraph."""
+    return obj.evaluated_get(scene_depsgraph(scene)).matrix_world.copy()

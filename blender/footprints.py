@@ -157,6 +157,7 @@ def evaluated_terrain(scene, terrain):
     with terrain_uncut(terrain):
         depsgraph.update()
         evaluated = terrain.evaluated_get(depsgraph)
+        world = np.array(evaluated.matrix_world)  # evaluated: a scene not shown has stale originals
         mesh = evaluated.to_mesh()
         try:
             local = np.empty(len(mesh.vertices) * 3, np.float32)
@@ -170,7 +171,6 @@ def evaluated_terrain(scene, terrain):
         finally:
             evaluated.to_mesh_clear()
     depsgraph.update()
-    world = np.array(terrain.matrix_world)
     vertices = local.reshape(-1, 3).astype(np.float64) @ world[:3, :3].T + world[:3, 3]
     polygons = [loops[s:s + t].tolist() for s, t in zip(starts, totals, strict=True)]
     return vertices, polygons
@@ -211,14 +211,15 @@ def ensure_print_frame(scene, terrain, collection):
         frame.hide_select = True  # it follows the terrain; paint again to realign it
     frame.parent = terrain
     # A full inverse (not loc/rot/scale) cancels any terrain transform, sheared or not.
-    frame.matrix_parent_inverse = terrain.matrix_world.inverted()
-    frame.matrix_basis = Matrix.Translation(terrain.matrix_world.translation)
+    placed = evaluation.world_matrix(scene, terrain)
+    frame.matrix_parent_inverse = placed.inverted()
+    frame.matrix_basis = Matrix.Translation(placed.translation)
     return frame
 
 
-def frame_world(frame):
+def frame_world(scene, frame):
     """The print frame's world matrix from its parent, now (matrix_world waits for an update)."""
-    return frame.parent.matrix_world @ frame.matrix_parent_inverse @ frame.matrix_basis
+    return evaluation.world_matrix(scene, frame.parent) @ frame.matrix_parent_inverse @ frame.matrix_basis
 
 
 def write_points(scene, terrain, frame, points, collection):
@@ -355,11 +356,12 @@ def ensure_patch(scene, terrain, frame, low, high, collection, pixel_size=1.0):
     with terrain_uncut(terrain):
         depsgraph.update()
         evaluated = terrain.evaluated_get(depsgraph)
+        placed = evaluated.matrix_world.copy()
         mesh = bpy.data.meshes.new_from_object(evaluated, depsgraph=depsgraph)
     depsgraph.update()
     centres = np.empty(len(mesh.polygons) * 3, np.float32)
     mesh.polygons.foreach_get("center", centres)
-    to_frame = np.array(frame_world(frame).inverted() @ terrain.matrix_world)
+    to_frame = np.array(frame_world(scene, frame).inverted() @ placed)
     in_frame = centres.reshape(-1, 3).astype(np.float64) @ to_frame[:3, :3].T + to_frame[:3, 3]
     keep = painter.faces_in_region(in_frame, low, high)
     patch = find_object(scene, own.PATCH, terrain)
@@ -500,7 +502,7 @@ def walk(scene, settings, progress=None):
     inputs = {"source": settings.source, "start": start,
               "end": end, "stride": settings.stride, "stance": settings.stance,
               "variation": settings.variation, "seed": settings.seed, "motion": _digest(motion),
-              "placement": _digest(np.array(terrain.matrix_world), vertices)}
+              "placement": _digest(np.array(evaluation.world_matrix(scene, terrain)), vertices)}
     return {"steps": steps, "vertices": vertices, "polygons": polygons, "source": source,
             "signature": json.dumps(inputs, sort_keys=True, default=str)}
 
@@ -518,7 +520,7 @@ def emit(scene, settings, progress=None, walked=None):
         raise FootprintError(f"No print lands on '{terrain.name}': the walk never crosses it")
     collection = terrain.users_collection[0] if terrain.users_collection else scene.collection
     frame = ensure_print_frame(scene, terrain, collection)
-    origin = np.array(frame_world(frame).translation)
+    origin = np.array(frame_world(scene, frame).translation)
     forward = np.asarray(steps["forward"], dtype=np.float64)
     rng = np.random.default_rng(settings.seed)
     scale = 1.0 + settings.variation * rng.uniform(-1.0, 1.0, len(hits))

@@ -291,9 +291,10 @@ def test_prints_in_a_scene_not_shown_land_on_its_evaluated_ground(sandscape):
     its own view layer (raised 1 m by a modifier there), not looked up in the shown scene's."""
     shown = bpy.context.scene
     terrain = scenes.height_field(6.0, 12, name="Their Sand")
+    terrain.location.x = 20.0  # placed away from the origin: its world matrix is the scene's to evaluate
     raise_up = terrain.modifiers.new("Raise", "DISPLACE")
     raise_up.strength, raise_up.mid_level = 1.0, 0.0  # no texture: 1 m along the normal
-    walker = scenes.keyframed_walker(lambda f: (-1.5 + 0.1 * (f - 1), 0.0, 2.0), range(1, 32))
+    walker = scenes.keyframed_walker(lambda f: (18.5 + 0.1 * (f - 1), 0.0, 2.0), range(1, 32))
     other = bpy.data.scenes.new("Other Shot")
     for obj in (terrain, walker):
         other.collection.objects.link(obj)
@@ -304,5 +305,8 @@ def test_prints_in_a_scene_not_shown_land_on_its_evaluated_ground(sandscape):
     assert bpy.context.scene == shown
     sandscape.blender.footprints.paint(other, settings)
     points = next(o for o in other.objects if o.get("sandscape_object") == "footprints")
-    heights = [(points.matrix_world @ v.co).z for v in points.data.vertices]
-    assert len(heights) >= 3 and heights == pytest.approx([1.0] * len(heights), abs=1e-4)
+    frame = points.parent  # the print frame, on the terrain: points are in its space
+    origin = sandscape.blender.footprints.frame_world(other, frame)
+    placed = [origin @ v.co for v in points.data.vertices]
+    assert len(placed) >= 3 and [p.z for p in placed] == pytest.approx([1.0] * len(placed), abs=1e-4)
+    assert all(18.0 < p.x < 22.0 for p in placed)
