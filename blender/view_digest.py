@@ -17,6 +17,8 @@ import numpy as np
 VERSION = 1  # bump when what goes into the digest changes: older digests then never match
 SIMPLE = {"BOOLEAN", "INT", "FLOAT", "ENUM", "STRING"}
 UNHASHED_CONSTRAINTS = {"SHRINKWRAP", "CAMERA_SOLVER", "OBJECT_SOLVER", "FOLLOW_TRACK"}
+BEZIER_FIELDS = (("co", 3), ("handle_left", 3), ("handle_right", 3), ("tilt", 1), ("radius", 1))
+NURBS_FIELDS = (("co", 4), ("tilt", 1), ("radius", 1), ("weight_softbody", 1))
 TRANSFORMS = ("location", "rotation_euler", "rotation_quaternion", "rotation_axis_angle", "scale",
               "delta_location", "delta_rotation_euler", "delta_rotation_quaternion", "delta_scale")
 
@@ -128,6 +130,10 @@ def _object(obj, out, follow):
     if obj.parent is not None:
         follow.append(obj.parent)
     if obj.type == "ARMATURE" and obj.pose is not None:  # a parent bone or a constraint's subtarget
+        for bone in obj.data.bones:  # the rest pose: head, tail, roll, parenting
+            parent = bone.parent.name if bone.parent else None
+            out.append(("rest", bone.name, _plain(bone.matrix_local), bone.length, parent, bone.use_connect,
+                        bone.use_inherit_rotation, bone.inherit_scale, bone.use_local_location))
         for bone in obj.pose.bones:
             prefix = f'pose.bones["{bone.name}"].'
             out.append((prefix, tuple(_plain(getattr(bone, n)) for n in
@@ -135,12 +141,19 @@ def _object(obj, out, follow):
                                       if f"{prefix}{n}" not in animated)))
             for constraint in bone.constraints:
                 _values(constraint, f'{prefix}constraints["{constraint.name}"].', animated, out, follow)
-    if obj.type == "CURVE":  # a path the camera follows
+    if obj.type == "CURVE":  # a path the camera follows: its points, tilts, handles and settings
         for spline in obj.data.splines:
-            points = spline.bezier_points if spline.type == "BEZIER" else spline.points
-            co = np.empty(len(points) * (3 if spline.type == "BEZIER" else 4), np.float64)
-            points.foreach_get("co", co)
-            out.append(("spline", spline.type, hashlib.sha1(co.tobytes()).hexdigest()))
+            settings = []
+            _values(spline, "", (), settings, [])
+            bezier = spline.type == "BEZIER"
+            points = spline.bezier_points if bezier else spline.points
+            fields = BEZIER_FIELDS if bezier else NURBS_FIELDS
+            sha = hashlib.sha1()
+            for name, width in fields:
+                values = np.empty(len(points) * width, np.float64)
+                points.foreach_get(name, values)
+                sha.update(values.tobytes())
+            out.append(("spline", tuple(settings), sha.hexdigest()))
     if obj.data is not None and obj.type in {"CAMERA", "CURVE"}:  # a sun's strength moves nothing
         data_animated = _animation(obj.data, out, follow)
         _values(obj.data, "", data_animated, out, [])

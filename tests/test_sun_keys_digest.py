@@ -154,3 +154,78 @@ def test_a_scene_not_shown_is_keyed_from_its_own_evaluation(tmp_path, sandscape)
     assert abs(u_first - 0.5) == pytest.approx(offset, abs=2e-3)
     assert abs(u_last - 0.5) == pytest.approx(offset, abs=2e-3)
     assert (u_first - 0.5) * (u_last - 0.5) < 0
+
+
+def boom_camera(scene):
+    """The shot's camera parented to an animated armature bone (a crane's boom)."""
+    armature = bpy.data.objects.new("Crane", bpy.data.armatures.new("Crane"))
+    scene.collection.objects.link(armature)
+    bpy.context.view_layer.objects.active = armature
+    bpy.ops.object.mode_set(mode="EDIT")
+    boom = armature.data.edit_bones.new("Boom")
+    boom.head, boom.tail = (0.0, -8.0, 0.0), (0.0, -8.0, 1.5)
+    bpy.ops.object.mode_set(mode="OBJECT")
+    pose = armature.pose.bones["Boom"]
+    pose.rotation_mode = "XYZ"
+    for frame, angle in ((1, -0.2), (scene.frame_end, 0.2)):
+        pose.rotation_euler.z = angle
+        pose.keyframe_insert("rotation_euler", index=2, frame=frame)
+    camera = scene.camera
+    camera.animation_data_clear()
+    camera.constraints.clear()
+    camera.parent, camera.parent_type, camera.parent_bone = armature, "BONE", "Boom"
+    camera.matrix_parent_inverse.identity()
+    camera.location, camera.rotation_euler = (0.0, 0.0, 0.0), (0.0, 0.0, 0.0)
+    return armature
+
+
+def tilt_the_boom(scene):
+    armature = bpy.data.objects["Crane"]
+    bpy.context.view_layer.objects.active = armature
+    bpy.ops.object.mode_set(mode="EDIT")
+    armature.data.edit_bones["Boom"].tail = (0.0, -6.5, 0.2)  # the rest pose leans forward
+    bpy.ops.object.mode_set(mode="OBJECT")
+
+
+def path_camera(scene):
+    """The shot's camera following a curve, turned with it."""
+    curve = bpy.data.curves.new("Track", "CURVE")
+    spline = curve.splines.new("BEZIER")
+    spline.bezier_points.add(1)
+    for point, co in zip(spline.bezier_points, ((-3.0, -8.0, 1.5), (3.0, -8.0, 1.5)), strict=True):
+        point.co, point.handle_left_type, point.handle_right_type = co, "AUTO", "AUTO"
+    track = bpy.data.objects.new("Track", curve)
+    scene.collection.objects.link(track)
+    curve.use_path, curve.path_duration = True, scene.frame_end
+    camera = scene.camera
+    camera.animation_data_clear()
+    camera.constraints.clear()
+    camera.location = (0.0, 0.0, 0.0)
+    camera.rotation_euler = (math.radians(90), 0.0, math.radians(-90))  # along the path, level
+    follow = camera.constraints.new("FOLLOW_PATH")
+    follow.target, follow.use_curve_follow, follow.forward_axis = track, True, "FORWARD_X"
+    follow.use_fixed_location, follow.offset_factor = False, 0.0
+    curve.keyframe_insert("eval_time", frame=1)
+    curve.eval_time = scene.frame_end
+    curve.keyframe_insert("eval_time", frame=scene.frame_end)
+    return track
+
+
+def close_the_track(scene):
+    bpy.data.curves["Track"].splines[0].use_cyclic_u = True
+
+
+@pytest.mark.parametrize("rig, change", [(boom_camera, tilt_the_boom), (path_camera, close_the_track)],
+                         ids=["bone rest pose", "curve closed"])
+def test_rigs_the_camera_rides_re_key_when_they_change(shot, sandscape, rig, change):
+    """Found by an artist-eye check: a bone's rest pose and a path's settings (closed, tilt,
+    resolution) were not in the digest, so the keys stayed stale after a save."""
+    scene, path = shot
+    rig(scene)
+    saved_steps(path)  # keyed for the rig
+    assert keys_are_current(scene, sandscape)
+    change(scene)
+    bpy.context.view_layer.update()
+    assert not keys_are_current(scene, sandscape)  # the change moved the sun on screen
+    assert saved_steps(path) > 0
+    assert keys_are_current(scene, sandscape)
