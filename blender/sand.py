@@ -14,6 +14,7 @@ import numpy as np
 from ..core import glints as glint_twin
 from ..core import sand as core_sand
 from ..node_groups import (
+    catalog,
     footprint_height,
     glint_facet,
     glint_shade,
@@ -184,6 +185,8 @@ def update_material(material, values, image=None, look="PHYSICAL", glint_mode="L
         # build only, so an artist's own Grain Size survives a re-run.
         look_node(material).inputs["Grain Size"].default_value = units.to_units(
             scene if scene is not None else bpy.context.scene, sand_normal.GRAIN_SIZE)
+    else:
+        upgrade_groups(material.node_tree)  # a re-run brings an older file's groups up to date
     node = glint_node(material)
     _glint_aov(material, node)
     sparkle_footprint.attach(node, scene if scene is not None else bpy.context.scene)
@@ -199,6 +202,22 @@ def update_material(material, values, image=None, look="PHYSICAL", glint_mode="L
                 wave.inputs[name].default_value = ripple_values[name]
         _ripple_displacement(material, bool(ripple_values.get("Displacement")))
     return node
+
+
+def upgrade_groups(tree, seen=None):
+    """Ensure every Sandscape group this tree uses, nested ones too, is at this version (or kept:
+    a newer one, an artist's edited one; node_groups/versions.py notes which)."""
+    seen = set() if seen is None else seen
+    for node in tree.nodes:
+        group = getattr(node, "node_tree", None)
+        name = group.get(h.GROUP_KEY) if group is not None else None
+        if name is None or name in seen:
+            continue
+        seen.add(name)
+        builder = catalog.builder_named(name)
+        if builder is not None:
+            group = h.ensure_group(builder)
+        upgrade_groups(group, seen)
 
 
 def default_ripples(scene):

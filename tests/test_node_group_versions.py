@@ -28,9 +28,12 @@ def user_of(group):
 
 def an_edit(group):
     """The artist changes what one node does: a value typed into an unlinked input."""
-    node = next(n for n in group.nodes if n.bl_idname == "ShaderNodeMath"
-                and any(not s.is_linked for s in n.inputs if hasattr(s, "default_value")))
-    socket = next(s for s in node.inputs if not s.is_linked and hasattr(s, "default_value"))
+    def typed(socket):
+        value = getattr(socket, "default_value", None)
+        return not socket.is_linked and socket.enabled and isinstance(value, float)
+
+    node = next(n for n in sorted(group.nodes, key=lambda n: n.name) if any(typed(s) for s in n.inputs))
+    socket = next(s for s in node.inputs if typed(s))
     socket.default_value += 0.123
     return node.name, socket.identifier, socket.default_value
 
@@ -90,3 +93,27 @@ def test_the_operator_that_met_a_newer_group_says_so(sandscape, versions):
     result, reports = operators.run_execute("sandscape.add_sand_material", context=bpy.context)
     assert result == {"FINISHED"}
     assert any("Node groups: kept" in text and "Ripples" in text for kinds, text in reports), reports
+
+
+def test_running_again_brings_an_older_files_groups_up_to_date(sandscape, versions):
+    """Found by an artist-eye check: re-running Add Sand Material on an older file's material left
+    its groups as they were, edited or not."""
+    from devtools import readback
+
+    readback.uv_plane()
+    assert bpy.ops.sandscape.add_sand_material() == {"FINISHED"}
+    material = bpy.context.active_object.active_material
+    look = next(n for n in material.node_tree.nodes if n.name == "Sandscape Look")
+    physical = sandscape.node_groups.physical_sand
+    cells = versions.find_group(sandscape.node_groups.glint_cells.NAME)  # nested in the glints
+    look.node_tree[versions.VERSION_KEY] = physical.VERSION - 1  # as an older Sandscape left them
+    cells[versions.VERSION_KEY] = sandscape.node_groups.glint_cells.VERSION - 1
+    edited = look.node_tree
+    an_edit(edited)
+    result, reports = operators.run_execute("sandscape.add_sand_material", context=bpy.context)
+    assert result == {"FINISHED"}
+    assert edited.name == physical.NAME + versions.EDITED_SUFFIX and look.node_tree == edited  # theirs, kept
+    assert versions.find_group(physical.NAME)[versions.VERSION_KEY] == physical.VERSION  # ours, beside it
+    fresh_cells = versions.find_group(sandscape.node_groups.glint_cells.NAME)
+    assert fresh_cells[versions.VERSION_KEY] == sandscape.node_groups.glint_cells.VERSION  # unedited: rebuilt
+    assert any("edited" in text for kinds, text in reports), reports
