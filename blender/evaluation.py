@@ -6,6 +6,7 @@ shown, it evaluates the wrong scene, and objects of the scene passed in come bac
 """
 
 import bpy
+import numpy as np
 
 
 def scene_view_layer(scene):
@@ -31,3 +32,13 @@ def world_matrix(scene, obj):
     """The object's world matrix as the scene evaluates it: an object's own matrix_world is only
     brought up to date by the shown scene's depsgraph."""
     return obj.evaluated_get(scene_depsgraph(scene)).matrix_world.copy()
+
+
+def mesh_triangles(mesh):
+    """A mesh's vertex positions (V, 3) and its render triangles (T, 3) as numpy arrays."""
+    local = np.empty(len(mesh.vertices) * 3, np.float32)
+    mesh.vertices.foreach_get("co", local)
+    mesh.calc_loop_triangles()
+    triangles = np.empty(len(mesh.loop_triangles) * 3, np.int32)
+    mesh.loop_triangles.foreach_get("vertices", triangles)
+    return local.reshape(-1, 3).astype(np.float64), triangles.reshape(-1, 3)

@@ -152,7 +152,10 @@ def sample_particles(scene, emitter, frames):
 
 
 def evaluated_terrain(scene, terrain):
-    """The terrain's evaluated mesh without our cut, in world space: (vertices (V, 3), polygons)."""
+    """The terrain's evaluated mesh without our cut, in world space: (vertices (V, 3), triangles
+    (T, 3)). The triangles are Blender's own split of each face, the ones it renders: a
+    non-planar quad split along the other diagonal is another surface (metres apart on an
+    elevation model's 90 m cells)."""
     depsgraph = evaluation.scene_depsgraph(scene)
     with terrain_uncut(terrain):
         depsgraph.update()
@@ -160,27 +163,20 @@ def evaluated_terrain(scene, terrain):
         world = np.array(evaluated.matrix_world)  # evaluated: a scene not shown has stale originals
         mesh = evaluated.to_mesh()
         try:
-            local = np.empty(len(mesh.vertices) * 3, np.float32)
-            mesh.vertices.foreach_get("co", local)
-            loops = np.empty(len(mesh.loops), np.int32)
-            mesh.loops.foreach_get("vertex_index", loops)
-            starts = np.empty(len(mesh.polygons), np.int32)
-            mesh.polygons.foreach_get("loop_start", starts)
-            totals = np.empty(len(mesh.polygons), np.int32)
-            mesh.polygons.foreach_get("loop_total", totals)
+            local, triangles = evaluation.mesh_triangles(mesh)
         finally:
             evaluated.to_mesh_clear()
     depsgraph.update()
-    vertices = local.reshape(-1, 3).astype(np.float64) @ world[:3, :3].T + world[:3, 3]
-    polygons = [loops[s:s + t].tolist() for s, t in zip(starts, totals, strict=True)]
-    return vertices, polygons
+    vertices = local @ world[:3, :3].T + world[:3, 3]
+    return vertices, triangles
 
 
-def project_down(vertices, polygons, contacts_world, progress=None):
-    """Drop each contact straight down (world -Z) onto the terrain: world hits, up-facing unit
-    normals and a hit mask. Rays start above the terrain's top, so the topmost surface is found.
+def project_down(vertices, triangles, contacts_world, progress=None):
+    """Drop each contact straight down (world -Z) onto the terrain's triangles: world hits,
+    up-facing unit normals and a hit mask. Rays start above the terrain's top, so the topmost
+    surface is found.
     """
-    bvh = BVHTree.FromPolygons([Vector(v) for v in vertices], polygons)
+    bvh = BVHTree.FromPolygons([Vector(v) for v in vertices], triangles.tolist())
     top = float(vertices[:, 2].max()) + 1.0
     contacts = np.asarray(contacts_world, dtype=np.float64)
     hits = np.full((len(contacts), 3), np.nan)
@@ -495,7 +491,7 @@ def walk(scene, settings, progress=None):
         steps = {"contact": contacts, "birth": births, "forward": forward,
                  "side": np.zeros(len(contacts), np.int32)}
         motion = np.concatenate([contacts, births[:, None]], axis=1)
-    vertices, polygons = evaluated_terrain(scene, terrain)
+    vertices, triangles = evaluated_terrain(scene, terrain)
     source = settings.walker if settings.source == "WALKER" else settings.particle_object
     # The source and terrain by identity, not name: renaming either keeps the prints (the points
     # object names its terrain by pointer; the source is kept beside the signature).
@@ -503,7 +499,7 @@ def walk(scene, settings, progress=None):
               "end": end, "stride": settings.stride, "stance": settings.stance,
               "variation": settings.variation, "seed": settings.seed, "motion": _digest(motion),
               "placement": _digest(np.array(evaluation.world_matrix(scene, terrain)), vertices)}
-    return {"steps": steps, "vertices": vertices, "polygons": polygons, "source": source,
+    return {"steps": steps, "vertices": vertices, "triangles": triangles, "source": source,
             "signature": json.dumps(inputs, sort_keys=True, default=str)}
 
 
@@ -514,7 +510,7 @@ def emit(scene, settings, progress=None, walked=None):
     """
     walked = walked or walk(scene, settings, _stage(progress, 0.0, 0.5))
     terrain, steps = settings.terrain, walked["steps"]
-    hits, normals, landed = project_down(walked["vertices"], walked["polygons"], steps["contact"],
+    hits, normals, landed = project_down(walked["vertices"], walked["triangles"], steps["contact"],
                                          _stage(progress, 0.5, 1.0))
     if not landed.any():
         raise FootprintError(f"No print lands on '{terrain.name}': the walk never crosses it")

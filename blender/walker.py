@@ -98,10 +98,9 @@ def ground_heights(scene, terrain, xy, top):
         origin = Vector((to_local @ np.array([x, y, top + 1.0, 1.0]))[:3])
         hit, location, *_ = evaluated.ray_cast(origin, down)
         if not hit:
-            if original is None:
-                mesh = terrain.data
-                original = BVHTree.FromPolygons([v.co for v in mesh.vertices],
-                                                [p.vertices for p in mesh.polygons])
+            if original is None:  # Blender's own triangles, as rendered
+                local, triangles = evaluation.mesh_triangles(terrain.data)
+                original = BVHTree.FromPolygons([Vector(v) for v in local], triangles.tolist())
             location, *_ = original.ray_cast(origin, down)
             hit = location is not None
         if hit:

@@ -8,6 +8,8 @@ import math
 import bpy
 import numpy as np
 import pytest
+from mathutils import Vector
+from mathutils.bvhtree import BVHTree
 
 from devtools import scenes
 
@@ -96,3 +98,41 @@ def test_a_particle_system_is_a_print_source():
     np.testing.assert_allclose(co[:, 0], -2.0 + 0.1 * np.ceil(births - 1e-4), atol=0.011)
     np.testing.assert_allclose(co[:, 2], 0.0, atol=1e-6)
     np.testing.assert_allclose(np.abs(read(points, "heading")), 0.0, atol=1e-3)  # moving along +X
+
+
+def test_prints_sit_on_the_triangles_blender_renders_on_an_elevation_model():
+    """A quad grid of 90 m cells (3 arc-seconds) with heights up to 40 m apart: each quad is far
+    from planar, and which diagonal splits it decides the ground by metres. Reference: Blender's
+    own ray cast on the evaluated terrain (its render triangles), not Sandscape's split."""
+    heights = np.random.default_rng(3).uniform(-40.0, 40.0, (13, 13))
+    terrain = scenes.height_field(1080.0, 12, lambda x, y: heights)
+    frames = (1, 61)
+    walker = scenes.keyframed_walker(lambda f: (-500.0 + 1000.0 * (f - 1) / 60, 37.0, 500.0),
+                                     range(frames[0], frames[1] + 1))
+    scenes.footprint_settings(terrain, walker, frames, stride=7.0, stance=3.0)
+    assert bpy.ops.sandscape.emit_footprints() == {"FINISHED"}
+    points = next(o for o in bpy.data.objects if o.get("sandscape_object") == "footprints")
+    origin = np.array(points.matrix_world.translation)
+    co = np.empty(len(points.data.vertices) * 3, np.float32)
+    points.data.vertices.foreach_get("co", co)
+    co = co.reshape(-1, 3).astype(np.float64) + origin
+    normals = read(points, "surface_normal", 3)
+    evaluated = terrain.evaluated_get(bpy.context.evaluated_depsgraph_get())
+    rendered, rendered_normals = [], []
+    for x, y, _ in co:
+        hit, location, normal, _ = evaluated.ray_cast((x, y, 1000.0), (0.0, 0.0, -1.0))
+        assert hit
+        rendered.append(location.z)
+        rendered_normals.append(normal)
+    error = np.abs(co[:, 2] - np.array(rendered))
+    assert len(co) > 100 and error.max() < 1e-3, error.max()
+    np.testing.assert_allclose(normals, np.array(rendered_normals), atol=1e-4)
+    # The test can tell: Sandscape's own split of the same faces (mathutils' polygon fill) puts
+    # prints metres off the rendered ground.
+    mesh = terrain.data
+    own_split = BVHTree.FromPolygons([v.co for v in mesh.vertices], [p.vertices for p in mesh.polygons])
+    other = np.array([own_split.ray_cast(Vector((x, y, 1000.0)), Vector((0.0, 0.0, -1.0)))[0].z
+                      for x, y, _ in co])
+    print(f"rendered ground vs prints: {error.max():.2e} m; vs polygon fill: "
+          f"{np.abs(other - rendered).max():.2f} m")
+    assert np.abs(other - np.array(rendered)).max() > 1.0
