@@ -41,6 +41,7 @@ def build_scene(bpy, readback, scenes, wind):
     settings.sun_elevation, settings.sun_azimuth = math.radians(12.0), 0.0
     settings.density, settings.dust_density, settings.anisotropy = 0.03, 0.02, 0.6
     settings.use_wind, settings.margin = wind, 1.0
+    settings.set_exposure = True
     bpy.ops.sandscape.add_atmosphere()
     scene = readback.cycles_scene(resolution=RESOLUTION, samples=16)
     scenes.camera("PERSP", location=(0.0, -6.0, 1.6), rotation=(math.radians(84), 0.0, 0.0), lens=24.0)

@@ -45,6 +45,7 @@ def build(bpy, readback, scenes, **clouds):
     settings = scene.sandscape_atmosphere
     settings.sun_elevation, settings.sun_azimuth = math.radians(12.0), math.radians(160.0)
     settings.density, settings.use_haze = 0.0, False
+    settings.set_exposure = True
     readback.cycles_scene(scene, RESOLUTION, 1)
     bpy.ops.sandscape.add_atmosphere()
     started = time.perf_counter()

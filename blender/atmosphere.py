@@ -11,15 +11,15 @@ import math
 
 import bpy
 import numpy as np
-from mathutils import Vector
+from mathutils import Euler, Matrix, Vector
 
 from ..core import atmosphere as air
 from ..core import sun as sky_sun
 from ..core.clouds import layer_region as holding_region
 from ..node_groups import dust_field, dust_volume
 from ..node_groups import helper as h
+from . import evaluation, sand, shot, units
 from . import ownership as own
-from . import sand, shot, units
 
 # Bump when build_sky_nodes changes: a world built by an older version is rebuilt.
 WORLD_NODES_KEY = "sandscape_sky_nodes"
@@ -28,6 +28,7 @@ SUN_ENERGY = 4.0  # W/m² of a new sun lamp when its light does not come from th
 SKY_SUN_SIZE = 0.009512044  # radians: the Sky Texture's default sun disc, which the lamp copies
 CLEAR = 0.01  # the haze may end where less than 1 % of the light behind it gets through
 MAX_REACH_M = 20000.0  # thin air would otherwise ask for a box hundreds of kilometres wide
+DEFAULT_WORLD_GREYS = (0.0508761, 0.05)  # a new file's world colour and a new world's, linear
 
 
 def scene_sun(scene):
@@ -43,21 +44,56 @@ def sun_rotation(elevation, azimuth):
     return (math.pi / 2 - elevation, 0.0, math.pi - azimuth)
 
 
-def ensure_sun(scene, elevation, azimuth, from_sky=True):
-    """The scene's sun lamp turned to the sun; from_sky: with the strength and colour of the sky
-    model's own sun at that elevation (core/sun.py), so sky and lamp light the scene as one."""
+def sun_angles(scene, sun):
+    """(elevation, azimuth) a sun lamp shines from, as the scene evaluates it: its world +Z."""
+    axis = evaluation.world_matrix(scene, sun).to_3x3() @ Vector((0.0, 0.0, 1.0))
+    if axis.length == 0.0:
+        return 0.0, 0.0
+    axis.normalize()
+    return math.asin(max(-1.0, min(1.0, axis.z))), math.atan2(axis.x, axis.y)
+
+
+def is_ours(sun):
+    return sun.get(own.OBJECT_KEY) == own.SUN
+
+
+def ensure_sun(scene, elevation, azimuth, from_sky=True, aim_theirs=False):
+    """The scene's sun lamp and where it shines from: (sun, elevation, azimuth, changes).
+
+    Ours (made when the scene has no sun) is turned to (elevation, azimuth) and, from_sky, given
+    the strength and colour of the sky model's own sun there (core/sun.py), so sky and lamp light
+    the scene as one. The artist's sun is theirs: it stays as it is and the sky follows it, unless
+    aim_theirs. changes: what was changed on the artist's sun, for the report.
+    """
     sun = scene_sun(scene)
+    if sun is not None and not is_ours(sun) and not aim_theirs:
+        return (sun, *sun_angles(scene, sun), [])
     if sun is None:
         sun = own.mark(bpy.data.objects.new("Sandscape Sun", bpy.data.lights.new("Sandscape Sun", "SUN")),
                        own.OBJECT_KEY, own.SUN)
         sun.data.energy = SUN_ENERGY
         scene.collection.objects.link(sun)
-    sun.rotation_mode = "XYZ"
-    sun.rotation_euler = sun_rotation(elevation, azimuth)
+    world = evaluation.world_matrix(scene, sun)
+    before = (world.col[2].to_3d(), sun.data.energy, tuple(sun.data.color))
+    turn = Euler(sun_rotation(elevation, azimuth))
+    if is_ours(sun) and sun.parent is None:
+        sun.rotation_mode = "XYZ"
+        sun.rotation_euler = turn
+    else:  # in world space, so a parented sun shines from the angles too; its place and scale stay
+        place, _, scale = world.decompose()
+        sun.matrix_world = Matrix.LocRotScale(place, turn.to_quaternion(), scale)
     if from_sky:
         sun.data.energy, sun.data.color = sky_sun.lamp(elevation)
         sun.data.angle = SKY_SUN_SIZE
-    return sun
+    changes = []
+    if not is_ours(sun):
+        if before[0].length == 0.0 or (before[0].normalized() - turn.to_matrix().col[2]).length > 1e-6:
+            changes.append(f"your sun '{sun.name}' turned to {math.degrees(elevation):.1f}° up, azimuth "
+                           f"{math.degrees(azimuth) % 360:.1f}°")
+        if from_sky and (abs(before[1] - sun.data.energy) > 1e-6 or before[2] != tuple(sun.data.color)):
+            color = ", ".join(f"{c:.2f}" for c in sun.data.color)
+            changes.append(f"its strength {before[1]:.4g} → {sun.data.energy:.4g} W/m² and colour ({color})")
+    return sun, elevation, azimuth, changes
 
 
 def build_sky_nodes(tree):
@@ -86,15 +122,33 @@ def build_sky_nodes(tree):
     h.arrange(tree, set_widths=False)
 
 
-def ensure_sky(scene, elevation, azimuth):
-    """This scene's world with a Sky Texture whose sun matches the lamp; returns (world, replaced).
+def is_untouched_default(world):
+    """Blender's own new-file world, as it comes: a grey Background and its output, nothing else.
+    Not the artist's choice, so the sky may take its place without asking."""
+    tree = world.node_tree
+    if tree is None or world.animation_data is not None or len(tree.nodes) != 2:
+        return False
+    background = next((n for n in tree.nodes if n.bl_idname == "ShaderNodeBackground"), None)
+    if background is None or not any(n.bl_idname == "ShaderNodeOutputWorld" for n in tree.nodes):
+        return False
+    color, strength = background.inputs["Color"], background.inputs["Strength"]
+    return (not color.is_linked and not strength.is_linked and strength.default_value == 1.0
+            and any(all(abs(c - grey) < 1e-6 for c in color.default_value[:3])
+                    for grey in DEFAULT_WORLD_GREYS))
 
-    A user's world is kept (fake user) and named on ours as "replaced_world" to switch back.
+
+def ensure_sky(scene, elevation, azimuth, replace_theirs=False):
+    """This scene's world with a Sky Texture whose sun matches the lamp: (world, replaced), world
+    None when the scene keeps the artist's own world (replace_theirs off).
+
+    A replaced world is kept (fake user) and named on ours as "replaced_world" to switch back.
     Our world shared with another scene is copied first, so that scene's sun stays where it is.
     """
     world = own.scene_world(scene)
     replaced = None
     if world is None:
+        if scene.world is not None and not replace_theirs and not is_untouched_default(scene.world):
+            return None, None
         replaced = scene.world
         world = own.mark(bpy.data.worlds.new("Sandscape Sky"), own.WORLD_KEY, own.SKY)
         if replaced is not None:
@@ -266,13 +320,19 @@ def apply(scene, settings):
 
     Densities are per metre in the settings and per scene unit in the volume.
     """
-    elevation, azimuth = settings.sun_elevation, settings.sun_azimuth
-    sun = ensure_sun(scene, elevation, azimuth, settings.sun_from_sky)
-    exposure = None
-    if settings.set_exposure:
-        exposure = round(sky_sun.exposure(elevation), 2)
+    sun, elevation, azimuth, changes = ensure_sun(scene, settings.sun_elevation, settings.sun_azimuth,
+                                                  settings.sun_from_sky, settings.aim_sun)
+    followed = not is_ours(sun) and not settings.aim_sun
+    if followed:  # the sidebar shows where the sky's sun now is
+        settings.sun_elevation, settings.sun_azimuth = elevation, azimuth
+    exposure = round(sky_sun.exposure(elevation), 2)  # what level grey ground under this sky asks for
+    if settings.set_exposure and scene.view_settings.exposure != exposure:
+        changes.append(f"exposure {scene.view_settings.exposure:+.2f} → {exposure:+.2f}")
         scene.view_settings.exposure = exposure
-    world, replaced = ensure_sky(scene, elevation, azimuth)
+    world, replaced = ensure_sky(scene, elevation, azimuth, settings.replace_world)
+    if replaced is not None:
+        changes.append(f"world '{replaced.name}' replaced by '{world.name}' (kept with a fake user: "
+                       "switch back in World properties)")
     per_metre = air.rayleigh_coefficients(settings.density, tuple(settings.wavelengths))
     coefficients = np.asarray(per_metre) * units.metres_per_unit(scene)
     geometry_low, geometry_high = scene_bounds(scene, 0.0)
@@ -294,8 +354,6 @@ def apply(scene, settings):
     low, high = bounds or (geometry_low - settings.margin, geometry_high + settings.margin)
     box = ensure_volume(scene, coefficients, low, high, dust)
     sand.set_wind(scene, settings.wind)  # one wind for the dust and the sand's ripples
-    if box is not None and field is not None:
-        # Ray marching: 1.8-5.8x faster than the default at equal error (bench/atmosphere.py).
-        scene.cycles.volume_biased = True
-    return {"sun": sun, "world": world, "replaced": replaced, "volume": box, "coefficients": per_metre,
-            "exposure": exposure}
+    # Volume sampling, like the exposure, is the artist's: the quality presets set it.
+    return {"sun": sun, "followed": followed, "elevation": elevation, "azimuth": azimuth, "world": world,
+            "volume": box, "coefficients": per_metre, "exposure": exposure, "changes": changes}

@@ -24,7 +24,8 @@ CAMERA_CLEARANCE = 0.6  # metres the camera keeps above the sand under it
 CAMERA_SMOOTH_FRAMES = 12  # the lift over a crest eases in and out over about this many frames
 CAMERA_SHIFT = (0.05, 0.05)  # lens shift, not a tilt: the walker low in frame, the low sun in it
 # Desert haze: visibility 10-50 km (../shared/look-references.md); the far dunes fade.
-AIR = {"density": 0.003, "dust_density": 0.002, "margin": 20.0, "visibility": 20000.0}
+AIR = {"density": 0.003, "dust_density": 0.002, "margin": 20.0, "visibility": 20000.0, "set_exposure": True,
+       "replace_world": True}
 # Cumulus based at 1.5 km: the 6 degree sun reaches that height 14 km off, past the 8 km layer.
 CLOUDS = {"coverage": 0.4, "seed": 2, "base": 1500.0, "thickness": 1200.0, "step": 400.0, "voxel": 50.0,
           "reach": 8000.0}
@@ -80,6 +81,7 @@ def build(context):
     """
     scene = context.scene
     scene.frame_start, scene.frame_end = FRAMES
+    scene.render.engine = "CYCLES"  # the demo's presets and post effects are measured in Cycles
     # Its denoising comes with the post effects below, once there is a camera and a sun.
     presets.apply(scene, {k: v for k, v in presets.PRESETS["PREVIEW"].items() if k != presets.DENOISE})
     scene.sandscape_atmosphere.wind = WIND

@@ -15,8 +15,9 @@ import bpy
 
 from ..node_groups import gated_blur, god_rays
 from ..node_groups import helper as h
-from . import atmosphere, sand, sun_keys
+from . import atmosphere, evaluation, sand, sun_keys
 from . import ownership as own
+from . import post_passes as passes
 
 SUN_COLOR = (1.0, 0.93, 0.8, 1.0)
 DENOISE, DENOISE_VOLUME = "Sandscape Denoise", "Sandscape Denoise Scattered"
@@ -32,12 +33,13 @@ def display_white(scene):
     return 2.0 ** -scene.view_settings.exposure
 
 
-def build(tree, settings, white=1.0, image_denoised=False, scene=None):
+def build(tree, settings, white=1.0, image_denoised=False, scene=None, engine=passes.CYCLES, layer=None):
     """(Re)build the tree for the settings: use_denoise, use_blur, blur_threshold, use_god_rays, ...
 
     image_denoised: Cycles denoises the combined image (not the passes), so the gated blur
-    denoises the scattered light it swaps in. scene: whose render layers the tree reads (default:
-    the context's)."""
+    denoises the scattered light it swaps in, and the sparkles come from its Noisy Image. scene:
+    whose render layers the tree reads (default: the context's); layer: which of its view layers.
+    engine: whose passes there are (EEVEE has no indirect volume light and no denoising data)."""
     tree.nodes.clear()
     if not tree.interface.items_tree:
         h.add_output(tree, "Image", "NodeSocketColor", "The composited frame")
@@ -46,12 +48,14 @@ def build(tree, settings, white=1.0, image_denoised=False, scene=None):
     layers = h.add_node(tree, "CompositorNodeRLayers", name="Sandscape Render Layers")
     if scene is not None:  # a scene not shown: its own layers, not the shown scene's
         layers.scene = scene
+    if layer is not None:
+        layers.layer = layer.name
     output = h.add_node(tree, "NodeGroupOutput", name="Sandscape Composite")
     image = layers.outputs["Image"]
-    if settings.use_denoise:
-        image = _denoised(tree, layers, settings)
+    if passes.denoises(settings, engine):
+        image = _denoised(tree, layers, settings, image_denoised)
     elif settings.use_blur:
-        volume = _scattered(tree, layers, image)
+        volume = _scattered(tree, layers, image, engine)
         if image_denoised:
             # Raw passes swapped into Cycles' denoised image put their noise back (seed to seed
             # 0.55 against 0.148 for the denoised image alone, tests/test_denoise_but_glints.py).
@@ -83,13 +87,15 @@ def build(tree, settings, white=1.0, image_denoised=False, scene=None):
     return tree
 
 
-def _scattered(tree, layers, image):
+def _scattered(tree, layers, image, engine=passes.CYCLES):
     """The volume passes' light, at most the image's own (per channel)."""
-    passes = h.vector_math(tree, "ADD", layers.outputs["Volume Direct"], layers.outputs["Volume Indirect"],
-                           label="Volume Passes")
+    light = layers.outputs["Volume Direct"]  # EEVEE's Volume Light: it has no indirect pass
+    if engine == passes.CYCLES:
+        light = h.vector_math(tree, "ADD", light, layers.outputs["Volume Indirect"],
+                              label="Volume Passes").outputs[0]
     # The passes can exceed the combined image in a pixel (751 negative pixels in a demo
     # frame; indirect sample clamping is a likely cause): never take out more than it holds.
-    return h.vector_math(tree, "MINIMUM", passes.outputs[0], image, label="Scattered Light").outputs[0]
+    return h.vector_math(tree, "MINIMUM", light, image, label="Scattered Light").outputs[0]
 
 
 def _with_blurred(tree, layers, image, volume, settings):
@@ -179,7 +185,7 @@ def _denoise(tree, image, layers=None, name=None):
     return node.outputs["Image"]
 
 
-def _denoised(tree, layers, settings):
+def _denoised(tree, layers, settings, image_denoised=False):
     """The image denoised with albedo and normal, the gated blur's change to its scattered light,
     and the sparkling pixels taken raw.
 
@@ -189,15 +195,20 @@ def _denoised(tree, layers, settings):
     0.0086 in the demo at 16 samples).
     """
     image = layers.outputs["Image"]
+    denoised = None
+    if image_denoised:  # Cycles denoised the image: its raw samples are the Noisy Image
+        denoised, image = image, layers.outputs["Noisy Image"]
     if not settings.use_blur:
-        clean = _denoise(tree, image, layers, DENOISE)
+        clean = denoised if denoised is not None else _denoise(tree, image, layers, DENOISE)
     else:
         # The whole image denoised with albedo and normal, then the blur's change to the scattered
         # light denoised on its own. Denoised apart from the guides, the scattered light itself
         # left blotches in the sky (σ 0.007 there against 0.0053; issue 14 measured 0.019 with
         # the raw passes swapped back in).
         volume = _denoise(tree, _scattered(tree, layers, image), name=DENOISE_VOLUME)
-        clean = _with_blurred(tree, layers, _denoise(tree, image, layers, DENOISE), volume, settings)
+        if denoised is None:
+            denoised = _denoise(tree, image, layers, DENOISE)
+        clean = _with_blurred(tree, layers, denoised, volume, settings)
     sparkling = h.add_node(tree, "ShaderNodeMix", label="Sparkles Raw", data_type="RGBA")
     h.link(tree, _sparkle_weight(tree, layers, _glint_light(tree, layers), clean), sparkling.inputs["Factor"])
     h.link(tree, clean, h.socket(sparkling.inputs, "A"))
@@ -247,46 +258,74 @@ def _occlusion(tree, layers, rays, radius):
 
 # ---------------------------------------------------------------- the operator's work
 
-def apply_post_effects(scene, settings):
-    """This scene's compositor tree, built for the settings; a user's tree is kept aside."""
+def route(scene, settings):
+    """What the tree is built for: the engine and, where the tree depends on it, whether Cycles
+    denoises the image."""
+    engine = scene.render.engine
+    reads_denoiser = engine == passes.CYCLES and (settings.use_denoise or settings.use_blur)
+    return f"{engine} denoised" if reads_denoiser and scene.cycles.use_denoising else engine
+
+
+def apply_post_effects(scene, settings, rebuild_only=False):
+    """This scene's compositor tree, built for the settings in the engine the scene renders with;
+    a user's tree is kept aside. Returns what was done and, under "changes", what of the
+    artist's settings changed. rebuild_only: a handler's rebuild for another engine or denoiser,
+    which leaves the scene's Compositing switch as the artist set it."""
     current = scene.compositing_node_group
     ours = own.scene_compositor(scene)
     replaced = None
+    changes = []
     if current is not None and ours is None:
         replaced = current
         current.use_fake_user = True
     elif ours is not None and any(other.compositing_node_group == ours for other in bpy.data.scenes
                                   if other != scene):
         ours = None  # shared with another scene: this scene gets its own
+    layer = evaluation.scene_view_layer(scene)
+    engine = scene.render.engine
     if not (settings.use_denoise or settings.use_blur or settings.use_god_rays):
         if ours is not None:
+            _, off = passes.update(ours, scene, layer, None, engine, GLINT_AOV)
+            changes += _pass_changes(layer, [], off)
             previous = bpy.data.node_groups.get(ours.get("replaced_tree", ""))
             scene.compositing_node_group = previous
             bpy.data.node_groups.remove(ours)
-        return {"tree": None, "replaced": replaced, "curve": [], "switched_engine": False,
-                "switched_denoiser": False}
+        return {"tree": None, "replaced": replaced, "curve": [], "changes": changes, "skipped": []}
     if ours is None:
         ours = own.mark(bpy.data.node_groups.new("Sandscape Post Effects", "CompositorNodeTree"),
                         own.TREE_KEY, True)
     if replaced is not None:
         ours["replaced_tree"] = replaced.name
-    # The volume and environment passes are Cycles passes.
-    switched_engine = scene.render.engine != "CYCLES"
-    scene.render.engine = "CYCLES"
-    set_passes(scene, settings)
-    # The tree denoises all but the glints: Cycles' own denoiser would smear them first.
-    switched_denoiser = settings.use_denoise and scene.cycles.use_denoising
-    if settings.use_denoise:
-        scene.cycles.use_denoising = False
-    build(ours, settings, display_white(scene), scene.cycles.use_denoising, scene)
+        changes.append(f"compositor '{replaced.name}' replaced (kept with a fake user)")
+    on, off = passes.update(ours, scene, layer, settings, engine, GLINT_AOV)
+    changes += _pass_changes(layer, on, off)
+    # Cycles' own denoiser is the artist's: when it is on, the tree takes its Noisy Image for
+    # the sparkles and its denoised image for the rest.
+    build(ours, settings, display_white(scene), engine == passes.CYCLES and scene.cycles.use_denoising,
+          scene, engine, layer)
     ours["fade"] = settings.fade
+    ours["built_for"] = route(scene, settings)
     scene.compositing_node_group = ours
-    scene.render.use_compositing = True
+    if not scene.render.use_compositing and not rebuild_only:
+        changes.append("compositing turned on (Output properties > Post Processing)")
+        scene.render.use_compositing = True
     curve = []
     if settings.use_god_rays:
         curve = sun_keys.key_scene(ours, scene, atmosphere.scene_sun(scene), settings.fade)
-    return {"tree": ours, "replaced": replaced, "curve": curve, "switched_engine": switched_engine,
-            "switched_denoiser": switched_denoiser}
+    skipped = []
+    if settings.use_denoise and not passes.denoises(settings, engine):
+        skipped.append(f"denoising all but the glints (Cycles only; left out in "
+                       f"{passes.ENGINE_NAMES.get(engine, engine)})")
+    return {"tree": ours, "replaced": replaced, "curve": curve, "changes": changes, "skipped": skipped}
+
+
+def _pass_changes(layer, on, off):
+    changes = []
+    if on:
+        changes.append(f"passes on in view layer '{layer.name}': {', '.join(on)}")
+    if off:
+        changes.append(f"passes Sandscape had turned on, off again: {', '.join(off)}")
+    return changes
 
 
 def set_denoise(scene, on):
@@ -306,28 +345,14 @@ def set_denoise(scene, on):
     return apply_post_effects(scene, only)
 
 
-def set_passes(scene, settings):
-    """The passes the tree reads, on every view layer; the glint AOV is declared where denoising."""
-    for view_layer in scene.view_layers:
-        view_layer.cycles.use_pass_volume_direct = settings.use_blur
-        view_layer.cycles.use_pass_volume_indirect = settings.use_blur
-        view_layer.use_pass_environment = settings.use_god_rays or settings.use_blur
-        view_layer.cycles.denoising_store_passes = settings.use_denoise
-        for name in ("use_pass_glossy_direct", "use_pass_glossy_indirect", "use_pass_glossy_color",
-                     "use_pass_emit"):
-            setattr(view_layer, name, settings.use_denoise)
-        aov = next((a for a in view_layer.aovs if a.name == GLINT_AOV), None)
-        if settings.use_denoise and aov is None:
-            aov = view_layer.aovs.add()
-            aov.name = GLINT_AOV
-        if aov is not None:
-            aov.type = "VALUE"
-
-
 def stale_for_denoiser(scene):
-    """True when Cycles' denoising was switched since our tree was built: its blur denoises the
-    scattered light exactly when Cycles denoised the image."""
+    """True when the engine, or Cycles' denoising, was switched since our tree was built."""
     tree, settings = own.scene_compositor(scene), scene.sandscape_post
-    if tree is None or scene.compositing_node_group != tree or settings.use_denoise or not settings.use_blur:
-        return False  # our own denoising switches Cycles' off when it is built
+    if tree is None or scene.compositing_node_group != tree:
+        return False
+    if "built_for" in tree:
+        return tree["built_for"] != route(scene, settings)
+    # A tree from before the record: its blur denoised the scattered light when Cycles denoised.
+    if settings.use_denoise or not settings.use_blur:
+        return False
     return (own.node(tree, DENOISE_VOLUME) is not None) != scene.cycles.use_denoising

@@ -28,7 +28,7 @@ def refresh_all(*_):
     for scene in bpy.data.scenes:
         if scene.library is None:
             if post.stale_for_denoiser(scene):
-                post.apply_post_effects(scene, scene.sandscape_post)  # keys the sun as it builds
+                post.apply_post_effects(scene, scene.sandscape_post, rebuild_only=True)  # keys the sun too
             else:
                 refresh_sun_keys(scene)
 

@@ -118,9 +118,16 @@ class SandscapeAtmosphereSettings(bpy.types.PropertyGroup):
     sun_from_sky: BoolProperty(name="Sun from Sky", default=True,
                                description="Give the sun lamp the strength and colour of the sky model's own "
                                "sun at this elevation, so lamp and sky light the ground as one")
-    set_exposure: BoolProperty(name="Set Exposure", default=True,
+    aim_sun: BoolProperty(name="Aim Your Sun", default=False,
+                          description="Turn a sun lamp Sandscape did not make to this elevation and azimuth "
+                          "(and, with Sun from Sky, give it the sky's strength and colour). Off: your sun "
+                          "stays as it is and the sky follows it")
+    set_exposure: BoolProperty(name="Set Exposure", default=False,
                                description="Set the scene's exposure so that level grey ground under this "
-                               "sun and sky reads as its own grey")
+                               "sun and sky reads as its own grey (the sky's sun is bright: about -2 to -5)")
+    replace_world: BoolProperty(name="Replace World", default=False,
+                                description="Put Sandscape's sky in place of a world you made (yours is kept "
+                                "with a fake user). A new file's untouched grey world is replaced anyway")
     density: FloatProperty(name="Density", default=0.02, soft_min=0.0, soft_max=1.0, precision=4,
                            description="Scattering coefficient at 550 nm, per metre; 0 adds no volume at "
                            "all. The volume is a box around what the camera sees: a world volume would "

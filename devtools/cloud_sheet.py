@@ -48,6 +48,7 @@ def render(directory):
         air = scene.sandscape_atmosphere
         air.sun_elevation, air.sun_azimuth = math.radians(elevation), math.radians(azimuth)
         air.density, air.use_haze = 0.0, False
+        air.set_exposure = True
         readback.cycles_scene(scene, RESOLUTION, SAMPLES)
         bpy.ops.sandscape.add_atmosphere()
         started = time.perf_counter()

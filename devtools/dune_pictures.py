@@ -58,6 +58,7 @@ def render_view(bpy, values, view, samples, path):
     air = scene.sandscape_atmosphere
     air.sun_elevation, air.sun_azimuth = (math.radians(a) for a in SUN)
     air.density, air.use_wind = AIR_DENSITY, False
+    air.set_exposure = True
     assert bpy.ops.sandscape.add_atmosphere() == {"FINISHED"}
     scene.view_settings.look = "AgX - Punchy"
     scene.render.resolution_x, scene.render.resolution_y = RESOLUTION

@@ -35,6 +35,7 @@ def build(samples):
     air = scene.sandscape_atmosphere
     air.sun_elevation, air.sun_azimuth = math.radians(15.0), math.radians(90.0)
     air.density, air.dust_density = 0.003, 0.002  # the demo's air
+    air.set_exposure = True  # as the report suggests for this sky
     assert bpy.ops.sandscape.add_atmosphere() == {"FINISHED"}
     readback.cycles_scene(scene, RESOLUTION, samples)  # a new file renders with EEVEE
     scene.cycles.use_denoising = True

@@ -1,5 +1,7 @@
 """The atmosphere operator: sun, sky and Rayleigh-scattering dust (scene.sandscape_atmosphere)."""
 
+import math
+
 import bpy
 
 from ..blender import atmosphere, ownership, units
@@ -16,10 +18,40 @@ def settings_problem(scene, settings):
         air.rayleigh_coefficients(settings.density, tuple(settings.wavelengths))
     except air.AtmosphereError as error:
         return str(error).capitalize()
-    # What the operator changes in place: the scene's sun, our world and our dust box.
-    theirs = [atmosphere.scene_sun(scene), ownership.scene_world(scene),
-              ownership.scene_object(scene, ownership.DUST_VOLUME)]
-    return editable_problem(*theirs)
+    # What the operator changes in place: the sun (the artist's only when asked), our world, our dust.
+    sun = atmosphere.scene_sun(scene)
+    if sun is not None and not atmosphere.is_ours(sun) and not settings.aim_sun:
+        sun = None
+    return editable_problem(sun, ownership.scene_world(scene),
+                            ownership.scene_object(scene, ownership.DUST_VOLUME))
+
+
+def report_line(scene, settings, done):
+    """One line: what Sandscape made or updated, then everything it changed or left of the artist's."""
+    sun = done["sun"]
+    where = f"{math.degrees(done['elevation']):.1f}° up, azimuth {math.degrees(done['azimuth']) % 360:.1f}°"
+    parts = [f"Sun '{sun.name}' {sun.data.energy:.4g} W/m² at {where}"]
+    if done["followed"]:
+        parts[0] = f"Your sun '{sun.name}' kept at {where}; the sky follows it (Aim Your Sun turns it)"
+    if done["world"] is not None:
+        parts.append(f"sky '{done['world'].name}'")
+    else:
+        parts.append(f"your world '{scene.world.name}' kept (Replace World puts the sky in its place)")
+    volume = done["volume"]
+    if volume is None:
+        parts.append("no volume (nothing scatters)")
+    else:
+        haze = ""
+        if settings.use_haze:
+            haze = f" with haze to {units.length_text(scene, settings.visibility)} visibility"
+        beta = ", ".join(f"{b:.4g}" for b in done["coefficients"])
+        parts.append(f"dust box '{volume.name}'{haze}, scattering {beta} per metre")
+    if not settings.set_exposure and done["world"] is not None and abs(
+            scene.view_settings.exposure - done["exposure"]) > 0.5:
+        parts.append(f"exposure kept at {scene.view_settings.exposure:+.2f} (Set Exposure would make it "
+                     f"{done['exposure']:+.2f} for this sky)")
+    changed = "; changed: " + "; ".join(done["changes"]) if done["changes"] else ""
+    return ", ".join(parts) + changed
 
 
 class SANDSCAPE_OT_add_atmosphere(SandscapeOperator, bpy.types.Operator):
@@ -35,17 +67,7 @@ class SANDSCAPE_OT_add_atmosphere(SandscapeOperator, bpy.types.Operator):
         if problem:
             return self.fail(problem)
         done = atmosphere.apply(scene, settings)
-        beta = ", ".join(f"{b:.4g}" for b in done["coefficients"])
-        volume = f"dust box '{done['volume'].name}'" if done["volume"] else "no volume (nothing scatters)"
-        if done["volume"] and settings.use_haze:
-            volume += f" with haze to {units.length_text(scene, settings.visibility)} visibility"
-        replaced = (f"; world '{done['replaced'].name}' kept with a fake user (switch back in World "
-                    "properties)" if done["replaced"] else "")
-        marching = "; volume ray marching on (biased, faster)" if scene.cycles.volume_biased else ""
-        sun = done["sun"].data
-        exposure = f"; exposure {done['exposure']:+.2f}" if done["exposure"] is not None else ""
-        self.report({"INFO"}, f"Sun '{done['sun'].name}' {sun.energy:.4g} W/m², sky '{done['world'].name}', "
-                    f"{volume}, scattering {beta} per metre{replaced}{marching}{exposure}")
+        self.report({"INFO"}, report_line(scene, settings, done))
         return {"FINISHED"}
 
 

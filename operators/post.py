@@ -3,6 +3,7 @@
 import bpy
 
 from ..blender import atmosphere, post
+from ..blender import post_passes as passes
 from ..blender.settings import SandscapePostSettings
 from ..core import post as post_twin
 from .base import SandscapeOperator, has_camera, value_problem
@@ -17,6 +18,10 @@ def _sun_for_rays(context):
 
 
 def settings_problem(scene, settings):
+    if scene.render.engine not in passes.ENGINE_NAMES:
+        return (f"Post effects read render passes that Cycles and EEVEE make; this scene renders with "
+                f"{scene.render.engine.replace('BLENDER_', '').title()}: pick Cycles or EEVEE in Render "
+                "properties")
     problem = value_problem(settings, SandscapePostSettings.LIMITS, scene)
     if problem or not settings.use_god_rays:
         return problem
@@ -45,15 +50,20 @@ class SANDSCAPE_OT_add_post_effects(SandscapeOperator, bpy.types.Operator):
         if problem:
             return self.fail(problem)
         done = post.apply_post_effects(scene, settings)
-        switches = (("denoising but the glints", settings.use_denoise), ("gated blur", settings.use_blur),
-                    ("god rays", settings.use_god_rays))
+        switches = (("denoising but the glints", settings.use_denoise and not done["skipped"]),
+                    ("gated blur", settings.use_blur), ("god rays", settings.use_god_rays))
         effects = [name for name, on in switches if on] or ["none"]
-        replaced = f"; compositor '{done['replaced'].name}' kept with a fake user" if done["replaced"] else ""
-        keyed = f", sun keyed on {len(done['curve'])} frames" if done["curve"] else ""
-        keyed += "; render engine set to Cycles (the passes are Cycles')" if done["switched_engine"] else ""
-        keyed += ("; render denoising off (the compositor denoises, all but the glints)"
-                  if done["switched_denoiser"] else "")
-        self.report({"INFO"}, f"Post effects: {', '.join(effects)}{keyed}{replaced}")
+        line = f"Post effects in {passes.ENGINE_NAMES[scene.render.engine]}: {', '.join(effects)}"
+        if done["curve"]:
+            line += f", sun keyed on {len(done['curve'])} frames"
+        kept_denoiser = settings.use_denoise and post.route(scene, settings).endswith(" denoised")
+        if done["tree"] is not None and kept_denoiser:
+            line += "; Cycles' own denoising kept (the sparkles come from its Noisy Image)"
+        if done["skipped"]:
+            line += "; not done: " + ", ".join(done["skipped"])
+        if done["changes"]:
+            line += "; changed: " + "; ".join(done["changes"])
+        self.report({"INFO"}, line)
         return {"FINISHED"}
 
 

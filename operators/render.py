@@ -40,7 +40,8 @@ class SANDSCAPE_OT_optimize_scene(SandscapeOperator, bpy.types.Operator):
 
 
 class SANDSCAPE_OT_apply_quality_preset(SandscapeOperator, bpy.types.Operator):
-    """Set samples, denoising, volume sampling, dicing and bounces from a measured quality preset"""
+    """Set Cycles' samples, denoising, volume sampling, dicing and bounces from a measured quality preset
+    (a scene in another engine is switched to Cycles, and the report says so)"""
 
     bl_idname = "sandscape.apply_quality_preset"
     bl_label = "Apply Quality Preset"
@@ -55,10 +56,15 @@ class SANDSCAPE_OT_apply_quality_preset(SandscapeOperator, bpy.types.Operator):
 
     def execute(self, context):
         settings = presets.PRESETS[self.preset]
-        if settings[presets.DENOISE] and context.scene.render.engine != "CYCLES":
-            context.scene.render.engine = "CYCLES"  # the denoising reads Cycles' passes
+        engine = context.scene.render.engine
+        if engine != "CYCLES":  # the presets are Cycles settings, measured in Cycles
+            context.scene.render.engine = "CYCLES"
         presets.apply(context.scene, settings)
-        self.report({"INFO"}, f"{self.preset.title()}: " + ", ".join(f"{k} {v}" for k, v in settings.items()))
+        switched = ""
+        if engine != "CYCLES":
+            switched = f"; render engine {engine.replace('BLENDER_', '').title()} → Cycles"
+        self.report({"INFO"}, f"{self.preset.title()} (Cycles): "
+                    + ", ".join(f"{k} {v}" for k, v in settings.items()) + switched)
         return {"FINISHED"}
 
 

@@ -134,14 +134,21 @@ def test_rerun_updates_and_nothing_scattering_removes_the_volume():
 
 def test_a_users_world_and_sun_are_kept():
     theirs = bpy.data.worlds.new("Their World")
+    theirs.node_tree.nodes["Background"].inputs["Strength"].default_value = 2.0  # theirs, not a new file's
     bpy.context.scene.world = theirs
     lamp = bpy.data.objects.new("Their Sun", bpy.data.lights.new("Their Sun", "SUN"))
     bpy.context.scene.collection.objects.link(lamp)
     bpy.ops.sandscape.add_atmosphere()
+    assert bpy.context.scene.world == theirs and not theirs.use_fake_user
+    assert not [o for o in bpy.data.objects if o.get("sandscape_object") == "sun"]  # theirs was used
+    assert lamp.matrix_world.col[2][2] == pytest.approx(1.0)  # still shining straight down
+    settings = bpy.context.scene.sandscape_atmosphere
+    settings.replace_world = True
+    bpy.ops.sandscape.add_atmosphere()
     assert bpy.context.scene.world != theirs and theirs.use_fake_user
     assert bpy.context.scene.world["replaced_world"] == "Their World"
-    assert not [o for o in bpy.data.objects if o.get("sandscape_object") == "sun"]  # theirs was used
-    assert lamp.matrix_world.col[2][2] == pytest.approx(math.sin(math.radians(25.0)), abs=1e-6)
+    skies = [n for n in bpy.context.scene.world.node_tree.nodes if n.bl_idname == "ShaderNodeTexSky"]
+    assert skies and all(n.sun_elevation == pytest.approx(math.pi / 2) for n in skies)  # the sky follows
 
 
 @pytest.mark.parametrize("wavelengths, density", [((680, 0, 440), 0.02), ((-680, 550, 440), 0.02),
@@ -194,7 +201,7 @@ def test_wind_dust_is_frame_driven_and_absent_when_off():
     assert driver.expression == "frame" and driver.is_simple_expression
     bpy.context.scene.frame_set(42)
     assert field.inputs["Frame"].default_value == pytest.approx(42.0, abs=1e-6)
-    assert bpy.context.scene.cycles.volume_biased  # ray marching for the noise density
+    assert not bpy.context.scene.cycles.volume_biased  # the artist's: the quality presets set it
     haze = tree.nodes["Sandscape Dust Grains"]  # no dust: the haze alone, everywhere alike
     assert not haze.inputs["Density"].is_linked and haze.inputs["Density"].default_value == pytest.approx(
         3.912 / 20000.0, rel=1e-3)

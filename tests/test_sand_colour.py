@@ -26,6 +26,7 @@ def test_lit_sand_reads_as_sand(sandscape, elevation, tmp_path):
     scene = bpy.context.scene
     air = scene.sandscape_atmosphere
     air.sun_elevation, air.sun_azimuth = math.radians(elevation), math.radians(120.0)
+    air.set_exposure = True  # as the report suggests for this sky
     assert bpy.ops.sandscape.add_atmosphere() == {"FINISHED"}  # default dust and 20 km haze
     bpy.context.view_layer.objects.active = terrain
     assert bpy.ops.sandscape.add_sand_material() == {"FINISHED"}

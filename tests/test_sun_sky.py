@@ -82,6 +82,7 @@ def test_add_atmosphere_sets_lamp_and_exposure_from_the_sky(sandscape):
     bpy.ops.mesh.primitive_plane_add(size=10)
     settings = bpy.context.scene.sandscape_atmosphere
     settings.sun_elevation = math.radians(30)
+    settings.set_exposure = True  # off by default: the exposure is the artist's
     bpy.ops.sandscape.add_atmosphere()
     sun = sandscape.blender.atmosphere.scene_sun(bpy.context.scene)
     strength, colour = sandscape.core.sun.lamp(math.radians(30))

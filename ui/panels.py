@@ -117,8 +117,8 @@ class SANDSCAPE_PT_footprints(SandscapeSubPanel, bpy.types.Panel):
 
 
 ATMOSPHERE_SECTIONS = (
-    ("Sun and Air", ("sun_elevation", "sun_azimuth", "sun_from_sky", "set_exposure", "density", "wavelengths",
-                     "margin")),
+    ("Sun and Air", ("sun_elevation", "sun_azimuth", "aim_sun", "sun_from_sky", "set_exposure",
+                     "replace_world", "density", "wavelengths", "margin")),
     ("Haze", ("use_haze", "visibility")),
     ("Dust", ("dust_density", "anisotropy", "use_wind", "wind", "dust_scale", "coverage", "softness",
               "falloff")),
@@ -143,6 +143,11 @@ class SANDSCAPE_PT_atmosphere(SandscapeSubPanel, bpy.types.Panel):
         layout.label(text="a world volume would block the sun lamp")
         layout.operator("sandscape.add_atmosphere", icon="LIGHT_SUN")
         _sections(layout, context.scene.sandscape_post, POST_SECTIONS)
+        engine = context.scene.render.engine
+        if engine == "BLENDER_EEVEE":
+            layout.label(text="EEVEE: god rays and blur; denoising is Cycles only", icon="INFO")
+        elif engine != "CYCLES":
+            layout.label(text="Post effects need Cycles or EEVEE passes", icon="ERROR")
         layout.operator("sandscape.add_post_effects", icon="NODE_COMPOSITING")
 
 
