@@ -3,7 +3,7 @@ with the render's alpha kept.
 
 Not a shared group but the tree on scene.compositing_node_group, one per scene, rebuilt from the
 settings on every run (an effect switched off is absent, not bypassed). Its parts are the
-versioned groups Sandscape Gated Blur and Sandscape God Rays N.
+versioned groups Sandscape Gated Blur and Sandscape God Rays.
 
 The god rays need the sun's place on screen on every frame: it is keyframed (sun_keys.py), so a
 render farm without Sandscape renders it; post_handlers.py keeps the keys up to date.
@@ -63,9 +63,10 @@ def build(tree, settings, white=1.0, image_denoised=False, scene=None, engine=pa
         image = _with_blurred(tree, layers, image, volume, settings)
     if settings.use_god_rays:
         rays = h.add_node(tree, "CompositorNodeGroup", name=sun_keys.RAYS, label="God Rays",
-                          node_tree=h.ensure_group(god_rays.Builder(settings.samples)),
-                          inputs={"Density": settings.ray_density, "Weight": settings.ray_weight,
-                                  "Decay": settings.ray_decay, "Exposure": settings.ray_exposure})
+                          node_tree=h.ensure_group(god_rays),
+                          inputs={"Samples": float(settings.samples), "Density": settings.ray_density,
+                                  "Weight": settings.ray_weight, "Decay": settings.ray_decay,
+                                  "Exposure": settings.ray_exposure})
         h.link(tree, _occlusion(tree, layers, rays, settings.disc_radius), rays.inputs["Occlusion"])
         # In display units: Exposure 1 gives the same rays at any scene exposure (the demo's
         # -2.7 had left the default rays at a mean change of 0.0006).

@@ -9,13 +9,18 @@ blurred and the original pixel differ by more than a threshold, so flat areas ke
 not across the outline of what hides the sky (a guide image, the environment pass), so cloud
 light is not smeared over the sky. Beyond the image the nearest edge pixel repeats.
 
-God rays (seed 002, GPU Gems 3 ch. 13): for a pixel at uv and the sun at L,
+God rays (seed 002, GPU Gems 3 ch. 13): for a pixel at uv and the sun at L, the seed sums
     rays(uv) = exposure * sum_{i=1..N} weight * decay^(i-1) * occlusion(uv - i * (uv - L) * density / N)
-with bilinear sampling that reads 0 outside the image.
+(god_rays_seed). The group sums M = 2^RAY_PASSES taps at the geometric scales r^j, r^M = 1 -
+density, weighted c^(j-1) with c = r * decay^(N/M) and scaled to the seed's total weight, in
+RAY_PASSES passes that each double the taps (god_rays): its node count does not grow with N.
+Bilinear sampling reads 0 outside the image.
 """
 
 import numpy as np
 
+RAY_PASSES = 8  # 256 taps
+MAX_DENSITY = 0.999  # the taps' span stops short of the sun itself (density 1 puts r at 0)
 GAUSS_CENTRE, GAUSS_EDGE, GAUSS_CORNER = 0.147761, 0.118318, 0.0947416
 LUMINANCE = np.array([0.2126, 0.7152, 0.0722])  # Rec. 709, Blender's linear scene luminance
 # The blur stops where the sky seen changes by more than this share across 3x3 pixels: cloud
@@ -102,12 +107,12 @@ def check_rays(samples, density, weight, decay, exposure):
             raise PostError(f"{name} must be 0 or more, got {value}")
 
 
-def god_rays(occlusion, sun_uv, samples=32, density=0.9, weight=0.05, decay=0.97, exposure=1.0):
-    """Radial accumulation of an occlusion image towards the sun (normalised screen position)."""
+def god_rays_seed(occlusion, sun_uv, samples=32, density=0.9, weight=0.05, decay=0.97, exposure=1.0):
+    """The seed's radial sum: N samples of the occlusion on the line to the sun (normalised screen
+    position)."""
     check_rays(samples, density, weight, decay, exposure)
     occlusion = np.asarray(occlusion, dtype=np.float64)
-    height, width = occlusion.shape[:2]
-    v, u = (np.indices((height, width)) + 0.5) / np.array([height, width])[:, None, None]
+    u, v = _pixel_uv(occlusion)
     out = 0.0
     for i in range(1, int(samples) + 1):
         scale = 1.0 - i * density / samples  # the sample sits at L + scale * (uv - L)
@@ -115,6 +120,41 @@ def god_rays(occlusion, sun_uv, samples=32, density=0.9, weight=0.05, decay=0.97
         sv = sun_uv[1] + scale * (v - sun_uv[1])
         out = out + weight * decay ** (i - 1) * sample_bilinear(occlusion, su, sv)
     return exposure * out
+
+
+def ray_taps(samples, density, weight, decay, passes=RAY_PASSES):
+    """(r, c, first): tap j = 1..2^passes at scale r^j with weight first * c^(j-1), their sum the
+    seed's total weight."""
+    taps = 2 ** passes
+    ratio = (1.0 - min(float(density), MAX_DENSITY)) ** (1.0 / taps)
+    step = ratio * float(decay) ** (samples / taps)
+    total = weight * (samples if decay > 1.0 - 1e-6 else (1.0 - decay ** samples) / (1.0 - decay))
+    return ratio, step, total / sum(step ** j for j in range(taps))
+
+
+def god_rays(occlusion, sun_uv, samples=32, density=0.9, weight=0.05, decay=0.97, exposure=1.0,
+             passes=RAY_PASSES):
+    """The group's rays: 2^passes geometric taps towards the sun, summed in `passes` passes that
+    each add the image so far, sampled (bilinear) nearer the sun, to itself."""
+    check_rays(samples, density, weight, decay, exposure)
+    occlusion = np.asarray(occlusion, dtype=np.float64)
+    u, v = _pixel_uv(occlusion)
+    ratio, step, first = ray_taps(samples, density, weight, decay, passes)
+
+    def towards_sun(image, scale):
+        return sample_bilinear(image, sun_uv[0] + scale * (u - sun_uv[0]),
+                               sun_uv[1] + scale * (v - sun_uv[1]))
+
+    image = towards_sun(occlusion, ratio)
+    for k in range(passes):
+        image = image + step ** (2 ** k) * towards_sun(image, ratio ** (2 ** k))
+    return exposure * first * image
+
+
+def _pixel_uv(image):
+    height, width = image.shape[:2]
+    v, u = (np.indices((height, width)) + 0.5) / np.array([height, width])[:, None, None]
+    return u, v
 
 
 def screen_position(view_projection, direction):

@@ -26,8 +26,6 @@ from . import (
     weather_map,
 )
 
-GOD_RAYS = god_rays.Builder(god_rays.DEFAULT_SAMPLES)
-
 GROUPS = (
     (physical_sand, "Sand"),
     (journey_sand, "Sand"),
@@ -46,7 +44,7 @@ GROUPS = (
     (cloud_density.GEOMETRY, "Clouds"),
     (weather_map.GEOMETRY, "Clouds"),
     (gated_blur, "Post Effects"),
-    (GOD_RAYS, "Post Effects"),
+    (god_rays, "Post Effects"),
     (region_cut, None),
     (print_markers, None),
 )

@@ -74,7 +74,7 @@ def test_switched_off_effects_are_absent(desert, sandscape):
     settings = desert.sandscape_post
     bpy.ops.sandscape.add_post_effects()
     tree = desert.compositing_node_group
-    assert {"Sandscape Gated Blur", "Sandscape God Rays 32"} <= tree_groups(tree)
+    assert {"Sandscape Gated Blur", "Sandscape God Rays"} <= tree_groups(tree)
     assert own.node(tree, post.DENOISE) is not None
     settings.use_denoise = False
     bpy.ops.sandscape.add_post_effects()
@@ -85,7 +85,7 @@ def test_switched_off_effects_are_absent(desert, sandscape):
     assert tree_groups(tree) == {"Sandscape Gated Blur"}
     settings.use_blur, settings.use_god_rays = False, True
     bpy.ops.sandscape.add_post_effects()
-    assert tree_groups(tree) == {"Sandscape God Rays 32"}
+    assert tree_groups(tree) == {"Sandscape God Rays"}
     settings.use_god_rays = False
     bpy.ops.sandscape.add_post_effects()
     assert desert.compositing_node_group is None
@@ -121,3 +121,18 @@ def test_bad_input_is_refused_and_changes_nothing(desert, case, message):
     with pytest.raises(RuntimeError, match=message):
         bpy.ops.sandscape.add_post_effects()
     assert readback.data_snapshot() == before
+
+
+def test_every_sample_count_shares_one_god_rays_group(desert):
+    """Samples is an input: 32, 200 and 1024 leave one group of the same nodes behind."""
+    settings = desert.sandscape_post
+    sizes = set()
+    for samples in (32, 200, 1024):
+        settings.samples = samples
+        assert bpy.ops.sandscape.add_post_effects() == {"FINISHED"}
+        rays = [g for g in bpy.data.node_groups if g.name.startswith("Sandscape God Rays")]
+        assert len(rays) == 1
+        sizes.add(len(rays[0].nodes))
+        node = next(n for n in desert.compositing_node_group.nodes if n.label == "God Rays")
+        assert node.inputs["Samples"].default_value == samples
+    assert len(sizes) == 1 and sizes.pop() < 150
