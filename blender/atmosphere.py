@@ -11,89 +11,23 @@ import math
 
 import bpy
 import numpy as np
-from mathutils import Euler, Matrix, Vector
+from mathutils import Vector
 
 from ..core import atmosphere as air
 from ..core import sun as sky_sun
 from ..core.clouds import layer_region as holding_region
 from ..node_groups import dust_field, dust_volume
 from ..node_groups import helper as h
-from . import evaluation, sand, shot, units
 from . import ownership as own
+from . import sand, shot, units
+from .sun_lamp import ensure_sun, is_ours, scene_sun  # noqa: F401 (the atmosphere's API)
 
 # Bump when build_sky_nodes changes: a world built by an older version is rebuilt.
 WORLD_NODES_KEY = "sandscape_sky_nodes"
 WORLD_NODES_VERSION = 2
-SUN_ENERGY = 4.0  # W/m² of a new sun lamp when its light does not come from the sky model
-SKY_SUN_SIZE = 0.009512044  # radians: the Sky Texture's default sun disc, which the lamp copies
 CLEAR = 0.01  # the haze may end where less than 1 % of the light behind it gets through
 MAX_REACH_M = 20000.0  # thin air would otherwise ask for a box hundreds of kilometres wide
 DEFAULT_WORLD_GREYS = (0.0508761, 0.05)  # a new file's world colour and a new world's, linear
-
-
-def scene_sun(scene):
-    """Our sun in this scene, else the scene's first sun lamp, else None."""
-    ours = own.scene_object(scene, own.SUN)
-    if ours is not None:
-        return ours
-    return next((o for o in scene.objects if o.type == "LIGHT" and o.data.type == "SUN"), None)
-
-
-def sun_rotation(elevation, azimuth):
-    """Euler rotation of a sun lamp that shines from (elevation, azimuth): its +Z points at the sun."""
-    return (math.pi / 2 - elevation, 0.0, math.pi - azimuth)
-
-
-def sun_angles(scene, sun):
-    """(elevation, azimuth) a sun lamp shines from, as the scene evaluates it: its world +Z."""
-    axis = evaluation.world_matrix(scene, sun).to_3x3() @ Vector((0.0, 0.0, 1.0))
-    if axis.length == 0.0:
-        return 0.0, 0.0
-    axis.normalize()
-    return math.asin(max(-1.0, min(1.0, axis.z))), math.atan2(axis.x, axis.y)
-
-
-def is_ours(sun):
-    return sun.get(own.OBJECT_KEY) == own.SUN
-
-
-def ensure_sun(scene, elevation, azimuth, from_sky=True, aim_theirs=False):
-    """The scene's sun lamp and where it shines from: (sun, elevation, azimuth, changes).
-
-    Ours (made when the scene has no sun) is turned to (elevation, azimuth) and, from_sky, given
-    the strength and colour of the sky model's own sun there (core/sun.py), so sky and lamp light
-    the scene as one. The artist's sun is theirs: it stays as it is and the sky follows it, unless
-    aim_theirs. changes: what was changed on the artist's sun, for the report.
-    """
-    sun = scene_sun(scene)
-    if sun is not None and not is_ours(sun) and not aim_theirs:
-        return (sun, *sun_angles(scene, sun), [])
-    if sun is None:
-        sun = own.mark(bpy.data.objects.new("Sandscape Sun", bpy.data.lights.new("Sandscape Sun", "SUN")),
-                       own.OBJECT_KEY, own.SUN)
-        sun.data.energy = SUN_ENERGY
-        scene.collection.objects.link(sun)
-    world = evaluation.world_matrix(scene, sun)
-    before = (world.col[2].to_3d(), sun.data.energy, tuple(sun.data.color))
-    turn = Euler(sun_rotation(elevation, azimuth))
-    if is_ours(sun) and sun.parent is None:
-        sun.rotation_mode = "XYZ"
-        sun.rotation_euler = turn
-    else:  # in world space, so a parented sun shines from the angles too; its place and scale stay
-        place, _, scale = world.decompose()
-        sun.matrix_world = Matrix.LocRotScale(place, turn.to_quaternion(), scale)
-    if from_sky:
-        sun.data.energy, sun.data.color = sky_sun.lamp(elevation)
-        sun.data.angle = SKY_SUN_SIZE
-    changes = []
-    if not is_ours(sun):
-        if before[0].length == 0.0 or (before[0].normalized() - turn.to_matrix().col[2]).length > 1e-6:
-            changes.append(f"your sun '{sun.name}' turned to {math.degrees(elevation):.1f}° up, azimuth "
-                           f"{math.degrees(azimuth) % 360:.1f}°")
-        if from_sky and (abs(before[1] - sun.data.energy) > 1e-6 or before[2] != tuple(sun.data.color)):
-            color = ", ".join(f"{c:.2f}" for c in sun.data.color)
-            changes.append(f"its strength {before[1]:.4g} → {sun.data.energy:.4g} W/m² and colour ({color})")
-    return sun, elevation, azimuth, changes
 
 
 def build_sky_nodes(tree):
@@ -137,9 +71,11 @@ def is_untouched_default(world):
                     for grey in DEFAULT_WORLD_GREYS))
 
 
-def ensure_sky(scene, elevation, azimuth, replace_theirs=False):
+def ensure_sky(scene, elevation, azimuth, replace_theirs=False, follow=None):
     """This scene's world with a Sky Texture whose sun matches the lamp: (world, replaced), world
-    None when the scene keeps the artist's own world (replace_theirs off).
+    None when the scene keeps the artist's own world (replace_theirs off). follow: the artist's
+    sun, which the sky's sun then follows on every frame through drivers (simple expressions:
+    they run without Python, on a farm too).
 
     A replaced world is kept (fake user) and named on ours as "replaced_world" to switch back.
     Our world shared with another scene is copied first, so that scene's sun stays where it is.
@@ -162,9 +98,28 @@ def ensure_sky(scene, elevation, azimuth, replace_theirs=False):
         build_sky_nodes(world.node_tree)
         world[WORLD_NODES_KEY] = WORLD_NODES_VERSION
     for sky in (n for n in world.node_tree.nodes if n.bl_idname == "ShaderNodeTexSky"):
+        for name in ("sun_elevation", "sun_rotation"):
+            sky.driver_remove(name)
         sky.sun_elevation = elevation
         sky.sun_rotation = azimuth % (2 * math.pi)
+        if follow is not None:
+            _follow(sky, follow)
     return world, replaced
+
+
+def _follow(sky, sun):
+    """Drivers that point the sky's sun along the lamp's world +Z (matrix_world's third column)."""
+    for name, expression, axes in (("sun_elevation", "asin(z)", "z"),
+                                   ("sun_rotation", "atan2(x, y) + (2 * pi if x < 0 else 0)", "xy")):
+        driver = sky.driver_add(name).driver
+        driver.type = "SCRIPTED"
+        for axis in axes:
+            variable = driver.variables.new()
+            variable.name, variable.type = axis, "SINGLE_PROP"
+            variable.targets[0].id_type = "OBJECT"
+            variable.targets[0].id = sun
+            variable.targets[0].data_path = f"matrix_world[2][{'xyz'.index(axis)}]"
+        driver.expression = expression
 
 
 def scene_bounds(scene, margin):
@@ -320,19 +275,19 @@ def apply(scene, settings):
 
     Densities are per metre in the settings and per scene unit in the volume.
     """
-    sun, elevation, azimuth, changes = ensure_sun(scene, settings.sun_elevation, settings.sun_azimuth,
-                                                  settings.sun_from_sky, settings.aim_sun)
-    followed = not is_ours(sun) and not settings.aim_sun
-    if followed:  # the sidebar shows where the sky's sun now is
-        settings.sun_elevation, settings.sun_azimuth = elevation, azimuth
-    exposure = round(sky_sun.exposure(elevation), 2)  # what level grey ground under this sky asks for
-    if settings.set_exposure and scene.view_settings.exposure != exposure:
-        changes.append(f"exposure {scene.view_settings.exposure:+.2f} → {exposure:+.2f}")
-        scene.view_settings.exposure = exposure
-    world, replaced = ensure_sky(scene, elevation, azimuth, settings.replace_world)
+    sun, elevation, azimuth, followed, changes = ensure_sun(
+        scene, settings.sun_elevation, settings.sun_azimuth, settings.sun_from_sky, settings.aim_sun)
+    world, replaced = ensure_sky(scene, elevation, azimuth, settings.replace_world,
+                                 follow=sun if followed else None)
     if replaced is not None:
         changes.append(f"world '{replaced.name}' replaced by '{world.name}' (kept with a fake user: "
                        "switch back in World properties)")
+    # What level grey ground asks for under this lamp, and the sky where it is ours.
+    lamp = (sun.data.energy, tuple(sun.data.color))
+    exposure = round(sky_sun.exposure(elevation, lamp, sky=world is not None), 2)
+    if settings.set_exposure and round(scene.view_settings.exposure, 2) != exposure:
+        changes.append(f"exposure {scene.view_settings.exposure:+.2f} → {exposure:+.2f}")
+        scene.view_settings.exposure = exposure
     per_metre = air.rayleigh_coefficients(settings.density, tuple(settings.wavelengths))
     coefficients = np.asarray(per_metre) * units.metres_per_unit(scene)
     geometry_low, geometry_high = scene_bounds(scene, 0.0)

@@ -282,7 +282,7 @@ def apply_post_effects(scene, settings, rebuild_only=False):
     elif ours is not None and any(other.compositing_node_group == ours for other in bpy.data.scenes
                                   if other != scene):
         ours = None  # shared with another scene: this scene gets its own
-    layer = evaluation.scene_view_layer(scene)
+    layer = rendered_layer(scene)
     engine = scene.render.engine
     if not (settings.use_denoise or settings.use_blur or settings.use_god_rays):
         if ours is not None:
@@ -318,6 +318,12 @@ def apply_post_effects(scene, settings, rebuild_only=False):
         skipped.append(f"denoising all but the glints (Cycles only; left out in "
                        f"{passes.ENGINE_NAMES.get(engine, engine)})")
     return {"tree": ours, "replaced": replaced, "curve": curve, "changes": changes, "skipped": skipped}
+
+
+def rendered_layer(scene):
+    """The view layer the tree reads: the one worked on when it renders, else the first that does."""
+    layer = evaluation.scene_view_layer(scene)
+    return layer if layer.use else next((v for v in scene.view_layers if v.use), layer)
 
 
 def _pass_changes(layer, on, off):

@@ -4,6 +4,7 @@ Sandscape renders the keys. Made again only when the digest of what they depend 
 shot.
 """
 
+import bpy
 import numpy as np
 
 from ..core import post
@@ -58,13 +59,21 @@ def sun_curve(scene, sun, fade):
 def key_sun(tree, curve):
     """Keyframes, not a driver: a render farm needs no scripts."""
     sun_node, rays = sun_key_node(tree), rays_node(tree)
+    old = tree.animation_data.action if tree.animation_data is not None else None
     if tree.animation_data is not None:
         tree.animation_data_clear()
+    if old is not None and old.users == 0:  # else every run leaves one more action behind
+        name = old.name
+        bpy.data.actions.remove(old)
+    else:
+        name = None
     sockets = (sun_node.inputs["X"], sun_node.inputs["Y"], rays.inputs["Intensity"])
     for frame, *values in curve:
         for socket, value in zip(sockets, values, strict=True):
             socket.default_value = value
             socket.keyframe_insert("default_value", frame=frame)
+    if name is not None and tree.animation_data is not None and tree.animation_data.action is not None:
+        tree.animation_data.action.name = name
 
 
 def keyed_curve(tree):

@@ -45,9 +45,15 @@ def level_irradiance(elevation):
     return direct, sky_irradiance(elevation)
 
 
-def exposure(elevation):
+def exposure(elevation, lamp=None, sky=True):
     """The exposure (stops) at which level grey ground under this sun and sky reads as its own
-    albedo: its radiance is albedo x E / pi, so the exposure is log2(pi / E) in luminance."""
-    direct, sky = level_irradiance(elevation)
-    total = float((direct + sky) @ LUMINANCE)
+    albedo: its radiance is albedo x E / pi, so the exposure is log2(pi / E) in luminance.
+
+    lamp: (strength, colour) of the sun lamp when it is not the sky model's own sun (an artist's,
+    at strength 4, is some forty times dimmer); sky: False where the sky model does not light the
+    ground (the artist's own world, whose light is not known here, is left out)."""
+    direct, sky_light = level_irradiance(elevation)
+    if lamp is not None:
+        direct = lamp[0] * np.asarray(lamp[1], dtype=np.float64)[:3] * max(np.sin(float(elevation)), 0.0)
+    total = float((direct + (sky_light if sky else 0.0)) @ LUMINANCE)
     return float(np.log2(np.pi / max(total, 1e-6)))

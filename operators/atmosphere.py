@@ -32,7 +32,10 @@ def report_line(scene, settings, done):
     where = f"{math.degrees(done['elevation']):.1f}° up, azimuth {math.degrees(done['azimuth']) % 360:.1f}°"
     parts = [f"Sun '{sun.name}' {sun.data.energy:.4g} W/m² at {where}"]
     if done["followed"]:
-        parts[0] = f"Your sun '{sun.name}' kept at {where}; the sky follows it (Aim Your Sun turns it)"
+        follows = "; the sky follows it" if done["world"] is not None else ""
+        why = ("keys, drivers or constraints move it, so Aim Your Sun leaves it" if settings.aim_sun
+               else "Aim Your Sun turns it to the settings")
+        parts[0] = f"Your sun '{sun.name}' kept at {where}{follows} ({why})"
     if done["world"] is not None:
         parts.append(f"sky '{done['world'].name}'")
     else:

@@ -50,12 +50,12 @@ class SANDSCAPE_OT_add_post_effects(SandscapeOperator, bpy.types.Operator):
         if problem:
             return self.fail(problem)
         done = post.apply_post_effects(scene, settings)
-        switches = (("denoising but the glints", settings.use_denoise and not done["skipped"]),
+        switches = (("denoising (all but the glints)", settings.use_denoise and not done["skipped"]),
                     ("gated blur", settings.use_blur), ("god rays", settings.use_god_rays))
         effects = [name for name, on in switches if on] or ["none"]
         line = f"Post effects in {passes.ENGINE_NAMES[scene.render.engine]}: {', '.join(effects)}"
         if done["curve"]:
-            line += f", sun keyed on {len(done['curve'])} frames"
+            line += f" (the sun's place on screen keyed on {len(done['curve'])} frames)"
         kept_denoiser = settings.use_denoise and post.route(scene, settings).endswith(" denoised")
         if done["tree"] is not None and kept_denoiser:
             line += "; Cycles' own denoising kept (the sparkles come from its Noisy Image)"

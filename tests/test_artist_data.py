@@ -64,9 +64,9 @@ def test_your_sun_stays_where_you_put_it_and_the_sky_follows_it(sandscape):
     assert scene.view_settings.exposure == 0.5
     assert sky_sun_degrees(scene) == {(35.0, 120.0)}  # the sky's sun is where theirs shines from
     settings = scene.sandscape_atmosphere
-    assert (math.degrees(settings.sun_elevation), math.degrees(settings.sun_azimuth)) == pytest.approx(
-        (35.0, 120.0), abs=1e-3)  # the sidebar shows where the sun is
-    assert "Your sun 'Key Sun' kept" in line and "changed:" not in line
+    assert math.degrees(settings.sun_elevation) == pytest.approx(25.0)  # still what Aim Your Sun would do
+    assert "Your sun 'Key Sun' kept at 35.0° up, azimuth 120.0°; the sky follows it" in line
+    assert "changed:" not in line
     assert "exposure kept at +0.50" in line  # what Set Exposure would do, said, not done
 
     # Asked for: their sun turned (in world space, through its parent) and lit as the sky's sun.
@@ -79,8 +79,49 @@ def test_your_sun_stays_where_you_put_it_and_the_sky_follows_it(sandscape):
     assert sun.data.energy == pytest.approx(strength, rel=1e-5) and strength > 40.0
     assert tuple(sun.data.color) == pytest.approx(colour, abs=1e-5)
     assert "changed: your sun 'Key Sun' turned to 20.0° up, azimuth 200.0°" in line
-    assert "its strength 4 →" in line
+    assert "its strength 4 →" in line and "its colour (1.00, 1.00, 1.00) →" in line
+    assert "its angle 0.53° → 0.54°" in line
     assert sky_sun_degrees(scene) == {(20.0, 200.0)}
+
+
+def test_the_sky_follows_a_sun_your_keys_move_and_aiming_leaves_it_alone():
+    scene = ground()
+    sun = artists_sun()
+    for frame, elevation in ((1, 35.0), (100, 15.0)):
+        sun.rotation_euler.x = math.radians(90.0 - elevation)
+        sun.keyframe_insert("rotation_euler", frame=frame)
+    scene.frame_set(1)
+    scene.sandscape_atmosphere.replace_world = True
+    operators.run_execute("sandscape.add_atmosphere")
+    for frame in (1, 50, 100):  # drivers (simple expressions): no Python needed on a farm
+        scene.frame_set(frame)
+        elevation, azimuth = direction(sun)
+        assert sky_sun_degrees(scene) == {(round(elevation, 3), round(azimuth, 3))}, frame
+    scene.frame_set(1)
+    scene.sandscape_atmosphere.aim_sun = True
+    before = sun.matrix_world.copy()
+    _, reports = operators.run_execute("sandscape.add_atmosphere")
+    assert sun.matrix_world == before and "so Aim Your Sun leaves it" in info_line(reports)
+    drivers = scene.world.node_tree.animation_data.drivers
+    assert len(drivers) == 4 and all(d.driver.is_simple_expression for d in drivers)
+
+
+def test_set_exposure_measures_your_own_lamp():
+    """An artist's sun at strength 4 under their own world: the exposure is for that lamp (their
+    world's light is not known and left out), not for the sky model's sun, forty times brighter."""
+    scene = ground()
+    sun = artists_sun()
+    sun.data.color = (1.0, 0.9, 0.8)
+    scene.sandscape_atmosphere.set_exposure = True
+    studio = bpy.data.worlds.new("Studio")
+    studio.node_tree.nodes["Background"].inputs["Strength"].default_value = 0.5
+    scene.world = studio
+    operators.run_execute("sandscape.add_atmosphere")
+    luminance = 0.2126 * 1.0 + 0.7152 * 0.9 + 0.0722 * 0.8
+    wanted = math.log2(math.pi / (4.0 * luminance * math.sin(math.radians(35.0))))
+    assert scene.view_settings.exposure == pytest.approx(wanted, abs=0.006)
+    _, reports = operators.run_execute("sandscape.add_atmosphere")
+    assert "exposure" not in info_line(reports)  # already so: no change to report
 
 
 def test_exposure_changes_only_when_asked_and_the_report_says_so(sandscape):
@@ -182,6 +223,21 @@ def test_cycles_denoiser_and_other_view_layers_are_left_as_the_artist_set_them()
     assert all(name in line.split("off again: ")[1] for name in ("Volume Direct", "Volume Indirect", "AOV"))
     assert not main.cycles.use_pass_volume_direct and not main.cycles.denoising_store_passes
     assert len(main.aovs) == 0 and main.use_pass_environment
+    actions = {a.name for a in bpy.data.actions}
+    operators.run_execute("sandscape.add_post_effects")  # again: the keys' action is reused
+    assert {a.name for a in bpy.data.actions} == actions
     settings.use_god_rays = False  # nothing left: the tree goes, the artist's pass stays
     operators.run_execute("sandscape.add_post_effects")
     assert scene.compositing_node_group is None and main.use_pass_environment
+
+
+def test_a_view_layer_that_does_not_render_is_not_the_one_read():
+    scene = ground()
+    bpy.ops.sandscape.add_atmosphere()
+    readback.cycles_scene(scene)
+    first = scene.view_layers[0]
+    second = scene.view_layers.new("Beauty")
+    first.use = False  # shown, but not rendered
+    operators.run_execute("sandscape.add_post_effects")
+    layers = next(n for n in scene.compositing_node_group.nodes if n.bl_idname == "CompositorNodeRLayers")
+    assert layers.layer == "Beauty" and second.use_pass_environment and not first.use_pass_environment

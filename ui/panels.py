@@ -4,7 +4,7 @@ poll() allows."""
 
 import bpy
 
-from ..blender import dunes, sand
+from ..blender import atmosphere, dunes, sand
 
 
 class SandscapeTab:
@@ -137,7 +137,12 @@ class SANDSCAPE_PT_atmosphere(SandscapeSubPanel, bpy.types.Panel):
 
     def draw(self, context):
         layout = self.layout
-        _sections(layout, context.scene.sandscape_atmosphere, ATMOSPHERE_SECTIONS)
+        air = context.scene.sandscape_atmosphere
+        sun = atmosphere.scene_sun(context.scene)
+        if sun is not None and not atmosphere.is_ours(sun):  # the angles below do not move it
+            what = "Aim Your Sun turns it" if air.aim_sun else "the sky follows it"
+            layout.label(text=f"Your sun '{sun.name}': {what}", icon="LIGHT_SUN")
+        _sections(layout, air, ATMOSPHERE_SECTIONS)
         # Where the user sees it: why the dust is a box and not a world volume.
         layout.label(text="Dust fills a box around what the camera sees:", icon="INFO")
         layout.label(text="a world volume would block the sun lamp")
