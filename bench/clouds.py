@@ -184,7 +184,7 @@ def routes(bpy, readback, scenes, _quick):
     layer, the process memory it adds, and the demo frame with each route and without clouds."""
     from importlib import import_module
 
-    clouds = import_module(f"{session.MODULE}.blender.clouds")
+    clouds = import_module(f"{session.MODULE}.addon.clouds")
     lines = ["| route | Add Clouds s (default layer) | memory added MiB | voxels |", "|---|---|---|---|"]
     for evaluation in ("GRID", "PROCEDURAL"):
         scene, _ = build(bpy, readback, scenes, coverage=0.0)  # the bench's scene, no layer yet

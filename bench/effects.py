@@ -119,7 +119,7 @@ def main(argv=None):
     session.install_dev_extension(root)
     from devtools import readback
 
-    modules = {name: importlib.import_module(f"{session.MODULE}.blender.{name}")
+    modules = {name: importlib.import_module(f"{session.MODULE}.addon.{name}")
                for name in ("footprints", "post", "clouds", "sand", "atmosphere")}
     out = pathlib.Path(tempfile.mkdtemp(prefix="sandscape-effects-"))
     scene = build_demo(bpy, args.samples, args.frame)

@@ -161,13 +161,13 @@ def sandscape_rows(resolutions):
     for resolution in resolutions:
         settings.resolution = resolution
         operator = median_time(lambda: bpy.ops.sandscape.paint_footprints(), repeats=3)
-        points_obj = sandscape.blender.footprints.find_object("footprints", terrain)
-        points = sandscape.blender.footprints.read_points(points_obj)
+        points_obj = sandscape.addon.footprints.find_object("footprints", terrain)
+        points = sandscape.addon.footprints.read_points(points_obj)
         assert len(points["co"]) == PRINTS
-        sole = sandscape.blender.footprints.sole_from(settings)
+        sole = sandscape.addon.footprints.sole_from(settings)
         centres = points["co"][:, :2]
         region = painter.fit_region(centres, sole.reach(), resolution, margin=0.05 + sole.rim_width)
-        forward, lateral = sandscape.blender.footprints.print_axes(points)
+        forward, lateral = sandscape.addon.footprints.print_axes(points)
 
         def paint_walk(c=centres, f=forward, la=lateral, r=region, s=sole, p=points):
             return painter.paint(c, f, la, p["birth_frame"], p["depth_scale"], r, s, FRAMES)

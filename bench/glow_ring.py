@@ -60,7 +60,7 @@ def main(argv=None):
     session.install_dev_extension(root)
     from devtools import readback, scenes
 
-    post = __import__(f"{session.MODULE}.blender.post", fromlist=["post"])
+    post = __import__(f"{session.MODULE}.addon.post", fromlist=["post"])
     bpy.ops.wm.open_mainfile(filepath=str(REPO / "demo.blend"))
     scene = bpy.context.scene
     scene.render.resolution_x, scene.render.resolution_y, scene.render.resolution_percentage = 320, 180, 100

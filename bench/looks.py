@@ -58,7 +58,7 @@ def main(argv=None):
     from devtools import readback
 
     sandscape = session.install_dev_extension(root)
-    sand = sandscape.blender.sand
+    sand = sandscape.addon.sand
     timing_size = (160, 90) if args.quick else (320, 180)
     rmse_size = (96, 54) if args.quick else (160, 90)
     timing_spp, mask_spp = (16, MASK_SPP // 4) if args.quick else (64, MASK_SPP)
@@ -74,7 +74,7 @@ def main(argv=None):
     air.use_haze = False
     air.use_wind = False
     bpy.ops.sandscape.add_atmosphere()  # the same sun and exposure, no dusty air
-    for clouds in sandscape.blender.ownership.scene_objects(scene, "clouds"):
+    for clouds in sandscape.addon.ownership.scene_objects(scene, "clouds"):
         clouds.hide_render = True  # the sand alone: the cloud grid took a render from 5 s to 30 s
     scene.render.use_compositing = False
     scene.cycles.use_denoising = False
@@ -83,7 +83,7 @@ def main(argv=None):
     terrain = scene.sandscape_footprints.terrain
     material = sand.find_sand_material(terrain)
     exposure = scene.view_settings.exposure
-    glint_values = {**sand.default_glint_values(), **sandscape.blender.demo.SAND}
+    glint_values = {**sand.default_glint_values(), **sandscape.addon.demo.SAND}
     no_glints = {**glint_values, "Threshold": 1.0}
     ripple_values = sand.default_ripples(scene)
     bare = bpy.data.materials.new("Bare Principled")

@@ -77,7 +77,7 @@ def main(argv=None):
     import bpy
 
     session.install_dev_extension(root)
-    presets = importlib.import_module(f"{session.MODULE}.blender.presets")
+    presets = importlib.import_module(f"{session.MODULE}.addon.presets")
     from devtools import readback
 
     session.reset()

@@ -44,7 +44,7 @@ def main(argv=None):
     sandscape = session.install_dev_extension(root)
     from devtools import scenes
 
-    handlers = sandscape.blender.post_handlers
+    handlers = sandscape.addon.post_handlers
     session.reset()
     scene = scenes.long_keyed_shot(args.frames)
     path = pathlib.Path(tempfile.mkdtemp(prefix="sandscape-save-")) / "shot.blend"

@@ -43,7 +43,7 @@ def near_and_far(bpy, sandscape):
     origins, directions = scenes.camera_rays(scene.camera, *CONVERGENCE)
     down = np.where(directions[..., 2] < 0, directions[..., 2], -1e-9)
     distance = np.where(directions[..., 2] < 0, -origins[..., 2] / down, np.inf)
-    footprint = distance * sandscape.blender.sparkle_footprint.pixel_angle(scene)
+    footprint = distance * sandscape.addon.sparkle_footprint.pixel_angle(scene)
     near = footprint < GRAIN
     return near, ~near
 
@@ -64,7 +64,7 @@ def main(argv=None):
         scene = sparkles.sparkling_sand(sandscape, resolution, mode != "unfiltered", samples, seed)
         if mode == "off":
             material = bpy.context.scene.objects["Plane"].active_material
-            sandscape.blender.sand.glint_node(material).inputs["Threshold"].default_value = 1.0
+            sandscape.addon.sand.glint_node(material).inputs["Threshold"].default_value = 1.0
         started = time.perf_counter()
         pixels = readback.render(scene)
         return pixels, time.perf_counter() - started

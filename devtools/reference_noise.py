@@ -30,8 +30,8 @@ def main(argv=None):
     import bpy
 
     session.install_dev_extension(root)
-    presets = importlib.import_module(f"{session.MODULE}.blender.presets")
-    sand = importlib.import_module(f"{session.MODULE}.blender.sand")
+    presets = importlib.import_module(f"{session.MODULE}.addon.presets")
+    sand = importlib.import_module(f"{session.MODULE}.addon.sand")
     import quality
 
     from devtools import readback

@@ -4,8 +4,8 @@ import math
 
 import bpy
 
-from ..blender import atmosphere, ownership, units
-from ..blender.settings import SandscapeAtmosphereSettings
+from ..addon import atmosphere, ownership, units
+from ..addon.settings import SandscapeAtmosphereSettings
 from ..core import atmosphere as air
 from .base import SandscapeOperator, editable_problem, value_problem
 

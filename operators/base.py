@@ -8,7 +8,7 @@ are out of range, NaN or inf are execute()'s to refuse, with an ERROR report and
 import functools
 import math
 
-from ..blender import ownership, shot, units
+from ..addon import ownership, shot, units
 from ..node_groups import versions
 
 

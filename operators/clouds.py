@@ -2,8 +2,8 @@
 
 import bpy
 
-from ..blender import clouds, ownership, units
-from ..blender.settings import CLOUD_LIMITS, cloud_fields
+from ..addon import clouds, ownership, units
+from ..addon.settings import CLOUD_LIMITS, cloud_fields
 from .base import SandscapeOperator, SceneSettings, editable_problem, has_camera, value_problem
 
 FIELDS = cloud_fields(True)

@@ -2,7 +2,7 @@
 
 import bpy
 
-from ..blender import demo
+from ..addon import demo
 from .base import SandscapeOperator
 
 

@@ -4,9 +4,9 @@ import os
 
 import bpy
 
-from ..blender import dunes, ownership, units
-from ..blender.progress import Progress
-from ..blender.settings import DUNE_LIMITS, dune_fields
+from ..addon import dunes, ownership, units
+from ..addon.progress import Progress
+from ..addon.settings import DUNE_LIMITS, dune_fields
 from ..core import dunes as model
 from .base import SandscapeOperator, SceneSettings, editable_problem, value_problem
 

@@ -5,8 +5,8 @@ They read the scene's Sandscape footprint settings (scene.sandscape_footprints).
 
 import bpy
 
-from ..blender import footprints, units
-from ..blender.settings import SandscapeFootprintSettings
+from ..addon import footprints, units
+from ..addon.settings import SandscapeFootprintSettings
 from .base import SandscapeOperator, value_problem
 
 

@@ -2,9 +2,9 @@
 
 import bpy
 
-from ..blender import atmosphere, post
-from ..blender import post_passes as passes
-from ..blender.settings import SandscapePostSettings
+from ..addon import atmosphere, post
+from ..addon import post_passes as passes
+from ..addon.settings import SandscapePostSettings
 from ..core import post as post_twin
 from .base import SandscapeOperator, has_camera, value_problem
 

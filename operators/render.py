@@ -4,7 +4,7 @@ reach the image."""
 import bpy
 from bpy.props import BoolProperty, EnumProperty
 
-from ..blender import optimize, presets
+from ..addon import optimize, presets
 from .base import SandscapeOperator
 
 

@@ -10,7 +10,7 @@ from bpy.props import (
     StringProperty,
 )
 
-from ..blender import sand, units
+from ..addon import sand, units
 from ..node_groups import glints, lit_glints, ripples
 from .base import SandscapeOperator, active_mesh, editable_problem, value_problem
 

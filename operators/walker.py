@@ -2,7 +2,7 @@
 
 import bpy
 
-from ..blender import footprints, walker
+from ..addon import footprints, walker
 from .base import SandscapeOperator
 
 

@@ -33,7 +33,7 @@ def camera_only_emitter(size=2.0):
 def test_rendered_transmittance_matches_the_twin(sandscape):
     camera_only_emitter()
     beta = air.rayleigh_coefficients(DENSITY)
-    sandscape.blender.atmosphere.ensure_volume(bpy.context.scene, beta, (-2.0, -2.0, 0.5),
+    sandscape.addon.atmosphere.ensure_volume(bpy.context.scene, beta, (-2.0, -2.0, 0.5),
                                              (2.0, 2.0, 0.5 + THICKNESS))
     scene = readback.cycles_scene(resolution=(32, 32), samples=64)
     scenes.camera("ORTHO", location=(0.0, 0.0, 5.0), ortho_scale=1.0)

@@ -1,4 +1,4 @@
-"""The cloud layer's voxel grid (geometry nodes, blender/cloud_grid.py) against the procedural
+"""The cloud layer's voxel grid (geometry nodes, addon/cloud_grid.py) against the procedural
 density's twin (core.clouds.density) at voxel centres; the grid drifting with the wind; the
 density fading to zero inside the layer's box; a turned camera still under cloud.
 """
@@ -13,8 +13,8 @@ import pytest
 from core import clouds as twin
 from devtools import operators, readback, scenes, session
 
-clouds = importlib.import_module(f"{session.MODULE}.blender.clouds")
-cloud_grid = importlib.import_module(f"{session.MODULE}.blender.cloud_grid")
+clouds = importlib.import_module(f"{session.MODULE}.addon.clouds")
+cloud_grid = importlib.import_module(f"{session.MODULE}.addon.cloud_grid")
 
 GRID_TOLERANCE = 1e-3  # of the densest cloud: the issue's
 # The twin in float64 against Blender's float32 noise, through the sharpened edges (x 3): 99th

@@ -16,7 +16,7 @@ def test_builds_every_part(sandscape, demo_scene):
     scene = demo_scene
     terrain = scene.sandscape_footprints.terrain
     material = terrain.active_material
-    groups = sandscape.blender.sand
+    groups = sandscape.addon.sand
     assert groups.glint_node(material) is not None and groups.footprint_node(material) is not None
     assert len(ours("footprints")[0].data.vertices) > 20 and ours("footprint_patch")
     assert ours("walker") and ours("sun") and ours("dust_volume")
@@ -45,7 +45,7 @@ def test_every_frame_the_camera_is_above_the_sand_and_the_walker_on_it(sandscape
         cameras.append(np.array(scene.camera.matrix_world.translation))
         feet.append(np.array(walker.matrix_world.translation))
     cameras, feet = np.array(cameras), np.array(feet)
-    ground = sandscape.blender.walker.ground_heights
+    ground = sandscape.addon.walker.ground_heights
     assert (cameras[:, 2] - ground(scene, terrain, cameras[:, :2], top)).min() > 0.5
     assert np.abs(feet[:, 2] - ground(scene, terrain, feet[:, :2], top)).max() < 0.05
     assert np.linalg.norm(np.diff(cameras, axis=0), axis=1).max() < 0.2  # no jumps: 1.4 m/s is 6 cm a frame
@@ -58,7 +58,7 @@ def test_the_sun_reaches_the_walker_past_the_clouds_on_every_frame(sandscape, de
     scene = demo_scene
     walker = scene.sandscape_footprints.walker
     layer = ours("clouds")[0]
-    sun = sandscape.blender.atmosphere.scene_sun(scene)
+    sun = sandscape.addon.atmosphere.scene_sun(scene)
     toward = np.array(sun.matrix_world.col[2][:3])  # a sun lamp shines down its -Z
     toward /= np.linalg.norm(toward)
     inverse = np.array(layer.matrix_world.inverted())

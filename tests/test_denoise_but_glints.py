@@ -94,9 +94,9 @@ def test_the_blur_keeps_cycles_denoising_when_ours_is_off(sandscape):
     through_tree, denoised_alone = noise(True), noise(False)
     print(f"seed-to-seed noise: through the tree {through_tree:.4f}, alone {denoised_alone:.4f}")
     assert through_tree <= 1.25 * denoised_alone
-    assert sandscape.blender.ownership.node(tree, sandscape.blender.post.DENOISE_VOLUME) is not None
+    assert sandscape.addon.ownership.node(tree, sandscape.addon.post.DENOISE_VOLUME) is not None
     # Switched back to raw renders: the tree is rebuilt at render time without the extra denoiser.
     scene.cycles.use_denoising = False
-    assert sandscape.blender.post.stale_for_denoiser(scene)
+    assert sandscape.addon.post.stale_for_denoiser(scene)
     readback.render(scene)
-    assert sandscape.blender.ownership.node(tree, sandscape.blender.post.DENOISE_VOLUME) is None
+    assert sandscape.addon.ownership.node(tree, sandscape.addon.post.DENOISE_VOLUME) is None

@@ -41,7 +41,7 @@ def test_builds_a_tagged_field_with_its_horizon_and_sand(sandscape):
     assert len(field.data.vertices) == 97 * 81 and len(field.data.polygons) == 96 * 80
     ring, = ours("dune_horizon")
     assert ring.parent == field and ring.hide_select and ring.matrix_world == field.matrix_world
-    material = sandscape.blender.sand.find_sand_material(field)
+    material = sandscape.addon.sand.find_sand_material(field)
     assert material is not None and ring.active_material == material
     far = local_vertices(ring)[:, :2]
     assert np.abs(far).max() >= 2000.0  # the land reaches as far as asked
@@ -210,7 +210,7 @@ def feet_above_sand(sandscape, field, walker):
     for frame in range(1, 97, 8):
         bpy.context.scene.frame_set(frame)
         position = np.array(walker.matrix_world.translation)
-        ground = sandscape.blender.walker.ground_heights(bpy.context.scene, field, position[None, :2], top)[0]
+        ground = sandscape.addon.walker.ground_heights(bpy.context.scene, field, position[None, :2], top)[0]
         heights.append(position[2] - ground)
     return np.abs(heights).max()
 
@@ -234,8 +234,8 @@ def test_the_walker_walks_on_the_dunes_and_its_prints_paint(sandscape):
     to_world = np.array(patch.matrix_world)
     corners = local_vertices(patch) @ to_world[:3, :3].T + to_world[:3, 3]
     top = float(np.max([v[2] for v in field.bound_box]))
-    with sandscape.blender.footprints.terrain_uncut(field):
-        ground = sandscape.blender.walker.ground_heights(bpy.context.scene, field, corners[:, :2], top)
+    with sandscape.addon.footprints.terrain_uncut(field):
+        ground = sandscape.addon.walker.ground_heights(bpy.context.scene, field, corners[:, :2], top)
     assert np.abs(corners[:, 2] - ground).max() < 0.02  # the patch lies on the new sand
 
 

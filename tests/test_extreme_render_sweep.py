@@ -121,7 +121,7 @@ def test_scene_settings_at_their_extremes_render_finite(desert, group, operator)
 def test_sand_operator_at_its_extremes_renders_finite(desert, sandscape):
     bpy.context.view_layer.objects.active = desert.sandscape_footprints.terrain
     # The demo's glint values, as the operator's properties.
-    demo_sand = {name.lower().replace(" ", "_"): value for name, value in sandscape.blender.demo.SAND.items()}
+    demo_sand = {name.lower().replace(" ", "_"): value for name, value in sandscape.addon.demo.SAND.items()}
     demo_sand["seed"] = int(demo_sand["seed"])
     rna = bpy.ops.sandscape.add_sand_material.get_rna_type()
     cases = settings_cases(rna)

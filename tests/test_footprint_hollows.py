@@ -47,7 +47,7 @@ def height_field_shading(heights, texel, light):
 
 @pytest.fixture
 def print_shading(sandscape):
-    footprints = sandscape.blender.footprints
+    footprints = sandscape.addon.footprints
     terrain = scenes.height_field(6.0, 12, name="Sand")
     walker = scenes.keyframed_walker(lambda f: (-1.5 + 0.1 * (f - 1), 0.0, 0.0), range(1, 32))
     settings = scenes.footprint_settings(terrain, walker, (1, 31), stride=0.7, variation=0.0,

@@ -44,17 +44,17 @@ def test_rerun_updates_the_same_data(sandscape, walk):
     assert len(ours("points")[0].data.vertices) == 7  # 3 m at 0.5 m
     assert ours("image")[0].size[0] == 300
     material = walk.terrain.active_material
-    node = sandscape.blender.sand.footprint_node(material)
+    node = sandscape.addon.sand.footprint_node(material)
     assert node.inputs["Depth"].default_value == pytest.approx(0.05)
     assert material.displacement_method == "BOTH"
     assert [m.type for m in walk.terrain.modifiers] == ["NODES"]
     # The glint material and the footprints live in one material, on terrain and patch alike.
-    assert sandscape.blender.sand.glint_node(material) is not None
+    assert sandscape.addon.sand.glint_node(material) is not None
     assert ours("patch")[0].active_material == material
     # Switching the glint source keeps the footprint wiring.
     bpy.context.view_layer.objects.active = walk.terrain
     bpy.ops.sandscape.add_sand_material(source="IMAGE", image_resolution=16)
-    assert sandscape.blender.sand.footprint_node(material).inputs["Depth"].default_value == \
+    assert sandscape.addon.sand.footprint_node(material).inputs["Depth"].default_value == \
         pytest.approx(0.05)
 
 
@@ -93,7 +93,7 @@ def test_cut_and_patch_share_every_face_once(sandscape, walk):
     modifier = walk.terrain.modifiers[0]
     identifiers = {item.name: item.identifier for item in modifier.node_group.interface.items_tree
                    if item.item_type == "SOCKET" and item.in_out == "INPUT"}
-    low, high = (sandscape.blender.compat.modifier_input(modifier, identifiers[name])
+    low, high = (sandscape.addon.compat.modifier_input(modifier, identifiers[name])
                  for name in ("Min", "Max"))
     original = np.array([p.center for p in walk.terrain.data.polygons])
     inside = sandscape.core.footprints.faces_in_region(original, low, high)
@@ -114,7 +114,7 @@ def test_frame_driver_runs_without_python_auto_run(sandscape, walk):
         bpy.ops.wm.open_mainfile(filepath=str(path), load_ui=False)
         material = bpy.data.materials["Sandscape Sand"]
         bpy.context.scene.frame_set(23)
-        node = sandscape.blender.sand.footprint_node(material)
+        node = sandscape.addon.sand.footprint_node(material)
         assert node.inputs["Frame"].default_value == pytest.approx(23.0, abs=1e-6)
         image = node.inputs["Print Map"].links[0].from_node.image
         assert image.packed_file is not None and image.is_float
@@ -239,7 +239,7 @@ def test_the_stand_in_walks_at_a_walking_pace_on_the_ground(walk):
 
 def test_progress_only_moves_forward(sandscape, walk):
     seen = []
-    sandscape.blender.footprints.paint(bpy.context.scene, walk, seen.append)
+    sandscape.addon.footprints.paint(bpy.context.scene, walk, seen.append)
     assert seen and seen == sorted(seen) and 0.0 <= seen[0] and seen[-1] <= 1.0
     assert seen[-1] >= 0.9  # emitting and painting both reported
 

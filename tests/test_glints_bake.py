@@ -119,5 +119,5 @@ def test_image_source_bake_equals_twin(sandscape, plane):
     noise = twin.sample_nearest(twin.noise_image(resolution, seed), np.stack([uu, vv], axis=-1))
     expected, _ = twin.glint_shade(noise, 1.0, threshold, 2.0, (1, 1, 1), 1.0)
     assert np.abs(baked - expected).max() <= BAKE_TOLERANCE
-    image = sandscape.blender.sand.image_node(material).image
+    image = sandscape.addon.sand.image_node(material).image
     assert image.packed_file is not None and image.colorspace_settings.name == "Non-Color"

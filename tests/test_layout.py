@@ -6,7 +6,7 @@ import pathlib
 import re
 
 REPO = pathlib.Path(__file__).resolve().parent.parent
-PACKAGES = ("core", "blender", "node_groups", "ui", "operators", "devtools")
+PACKAGES = ("core", "addon", "node_groups", "ui", "operators", "devtools")
 
 
 def layout_block():

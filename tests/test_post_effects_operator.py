@@ -70,7 +70,7 @@ def test_rays_appear_only_with_the_sun_in_front(desert):
 
 
 def test_switched_off_effects_are_absent(desert, sandscape):
-    own, post = sandscape.blender.ownership, sandscape.blender.post
+    own, post = sandscape.addon.ownership, sandscape.addon.post
     settings = desert.sandscape_post
     bpy.ops.sandscape.add_post_effects()
     tree = desert.compositing_node_group

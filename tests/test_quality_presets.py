@@ -20,7 +20,7 @@ def readme_preset(name):
 
 @pytest.mark.parametrize("name", ["DRAFT", "PREVIEW", "FINAL"])
 def test_preset_sets_its_settings(sandscape, name):
-    presets = sandscape.blender.presets
+    presets = sandscape.addon.presets
     assert bpy.ops.sandscape.apply_quality_preset(preset=name) == {"FINISHED"}
     settings = presets.PRESETS[name]
     scene = bpy.context.scene
@@ -35,18 +35,18 @@ def test_preset_sets_its_settings(sandscape, name):
     assert (scene.cycles.samples, scene.cycles.volume_step_rate) == pytest.approx(readme_preset(name))
     # The compositor denoises all but the glints; Cycles' denoiser would smear them first.
     assert scene.sandscape_post.use_denoise and not scene.cycles.use_denoising
-    tree = sandscape.blender.ownership.scene_compositor(scene)
+    tree = sandscape.addon.ownership.scene_compositor(scene)
     assert tree is not None and scene.compositing_node_group == tree
-    assert sandscape.blender.ownership.node(tree, sandscape.blender.post.DENOISE) is not None
+    assert sandscape.addon.ownership.node(tree, sandscape.addon.post.DENOISE) is not None
     # A scene without post effects gets only the denoising: no god rays without a sun.
-    assert sandscape.blender.sun_keys.rays_node(tree) is None
+    assert sandscape.addon.sun_keys.rays_node(tree) is None
     layer = scene.view_layers[0]
     assert layer.cycles.denoising_store_passes and layer.use_pass_glossy_direct
-    assert any(aov.name == sandscape.blender.post.GLINT_AOV for aov in layer.aovs)
+    assert any(aov.name == sandscape.addon.post.GLINT_AOV for aov in layer.aovs)
 
 
 def test_presets_get_cheaper_in_order(sandscape):
-    presets = sandscape.blender.presets.PRESETS
+    presets = sandscape.addon.presets.PRESETS
     samples = [presets[name]["samples"] for name in ("DRAFT", "PREVIEW", "FINAL")]
-    assert samples == sorted(samples) and samples[-1] < sandscape.blender.presets.BLENDER_DEFAULTS["samples"]
+    assert samples == sorted(samples) and samples[-1] < sandscape.addon.presets.BLENDER_DEFAULTS["samples"]
     assert not any(settings["use_denoising"] for settings in presets.values())

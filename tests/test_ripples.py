@@ -189,7 +189,7 @@ def test_ripple_lengths_follow_the_scene_units(sandscape):
     bpy.context.scene.unit_settings.scale_length = 0.01
     bpy.ops.mesh.primitive_plane_add(size=300.0)
     bpy.ops.sandscape.add_sand_material()  # a script's call: no invoke, the defaults in metres
-    wave = sandscape.blender.sand.ripple_node(sandscape.blender.sand.find_sand_material(
+    wave = sandscape.addon.sand.ripple_node(sandscape.addon.sand.find_sand_material(
         bpy.context.active_object))
     assert wave.inputs["Wavelength"].default_value == pytest.approx(12.0, rel=1e-6)
     assert wave.inputs["Amplitude"].default_value == pytest.approx(0.4, rel=1e-6)
@@ -199,8 +199,8 @@ def test_ripple_lengths_follow_the_scene_units(sandscape):
 def test_no_ripples_builds_no_ripple_group(sandscape):
     bpy.ops.mesh.primitive_plane_add()
     bpy.ops.sandscape.add_sand_material(ripples=False)
-    material = sandscape.blender.sand.find_sand_material(bpy.context.active_object)
-    assert sandscape.blender.sand.ripple_node(material) is None
+    material = sandscape.addon.sand.find_sand_material(bpy.context.active_object)
+    assert sandscape.addon.sand.ripple_node(material) is None
     bpy.ops.sandscape.add_sand_material(ripples=True)
-    assert sandscape.blender.sand.ripple_node(material) is not None
+    assert sandscape.addon.sand.ripple_node(material) is not None
     assert len([m for m in bpy.data.materials if m.get("sandscape_structure")]) == 1

@@ -20,7 +20,7 @@ def test_rerun_updates_instead_of_duplicating(sandscape):
     assert len(plane.material_slots) == 1
     # physical sand + its sand normal, lit glints + their cells and facet, ripples
     assert len(ours(bpy.data.node_groups, "sandscape_group")) == 6
-    node = sandscape.blender.sand.glint_node(plane.active_material)
+    node = sandscape.addon.sand.glint_node(plane.active_material)
     assert node.inputs["Threshold"].default_value == pytest.approx(0.5)
     assert node.inputs["Roughness"].default_value == pytest.approx(0.2)
     assert plane.active_material.cycles.emission_sampling == "NONE"  # glints light nothing else
@@ -31,11 +31,11 @@ def test_rerun_updates_instead_of_duplicating(sandscape):
     assert len(ours(bpy.data.materials, "sandscape_material")) == 1
     assert len(ours(bpy.data.images, "sandscape_image")) == 1
     bpy.ops.sandscape.add_sand_material(source="PROCEDURAL")
-    assert sandscape.blender.sand.image_node(plane.active_material) is None
+    assert sandscape.addon.sand.image_node(plane.active_material) is None
     # Another look and emission glints: the same material, rebuilt, one of everything again.
     bpy.ops.sandscape.add_sand_material(look="JOURNEY", glints="EMISSION", ripples=False)
     assert len(ours(bpy.data.materials, "sandscape_material")) == 1
-    assert sandscape.blender.sand.structure(plane.active_material) == ("JOURNEY", "EMISSION", "PROCEDURAL",
+    assert sandscape.addon.sand.structure(plane.active_material) == ("JOURNEY", "EMISSION", "PROCEDURAL",
                                                                        False)
     assert not plane.active_material.cycles.use_bump_map_correction  # the contrast's slopes stay lit
 
@@ -54,7 +54,7 @@ def test_users_look_alike_data_is_never_touched(sandscape):
     assert mine != theirs and mine.get("sandscape_material") == "sand"
     assert all(p.material_index == plane.active_material_index for p in plane.data.polygons)
     assert len(their_group.nodes) == 0 and their_group.get("sandscape_group") is None
-    assert sandscape.blender.sand.glint_node(mine).node_tree != their_group
+    assert sandscape.addon.sand.glint_node(mine).node_tree != their_group
 
 
 def test_outdated_group_is_rebuilt_and_users_move_over(sandscape):
@@ -67,7 +67,7 @@ def test_outdated_group_is_rebuilt_and_users_move_over(sandscape):
     new = helper.ensure_group(glints)
     assert new.as_pointer() != old_pointer and new.name == glints.NAME
     assert len([g for g in bpy.data.node_groups if g.get(helper.GROUP_KEY) == glints.NAME]) == 1
-    assert sandscape.blender.sand.glint_node(plane.active_material).node_tree == new
+    assert sandscape.addon.sand.glint_node(plane.active_material).node_tree == new
     assert helper.ensure_group(glints) == new  # current version: returned as is
 
 

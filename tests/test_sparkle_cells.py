@@ -135,11 +135,11 @@ def test_sand_made_before_the_camera_follows_the_camera_added_after(sandscape):
     scene = readback.cycles_scene(resolution=(200, 100))
     bpy.context.view_layer.update()
     bpy.context.view_layer.update()  # the first update re-arms, the second evaluates
-    node = sandscape.blender.sand.glint_node(ground.active_material)
-    expected = sandscape.blender.sparkle_footprint.pixel_angle(scene)
+    node = sandscape.addon.sand.glint_node(ground.active_material)
+    expected = sandscape.addon.sparkle_footprint.pixel_angle(scene)
     assert node.inputs["Pixel Angle"].default_value == pytest.approx(expected, rel=1e-5)
     camera.data.lens = 100.0
     bpy.context.view_layer.update()
     assert node.inputs["Pixel Angle"].default_value == pytest.approx(
-        sandscape.blender.sparkle_footprint.pixel_angle(scene), rel=1e-5)
-    assert sandscape.blender.sparkle_footprint.pixel_angle(scene) < expected / 1.9  # 50 mm to 100 mm
+        sandscape.addon.sparkle_footprint.pixel_angle(scene), rel=1e-5)
+    assert sandscape.addon.sparkle_footprint.pixel_angle(scene) < expected / 1.9  # 50 mm to 100 mm

@@ -40,8 +40,8 @@ def saved_steps(path):
 
 
 def keys_are_current(scene, sandscape):
-    keys = sandscape.blender.sun_keys
-    sun = sandscape.blender.atmosphere.scene_sun(scene)
+    keys = sandscape.addon.sun_keys
+    sun = sandscape.addon.atmosphere.scene_sun(scene)
     keyed = np.array(keys.keyed_curve(scene.compositing_node_group))
     fresh = np.array(keys.sun_curve(scene, sun, 0.25))
     return keyed.shape == fresh.shape and np.abs(keyed - fresh).max() <= 1e-6
@@ -118,7 +118,7 @@ def test_motion_the_digest_cannot_see_always_re_keys(shot, sandscape):
     wrap = scene.camera.constraints.new("SHRINKWRAP")  # follows the ground's waving geometry
     wrap.target = next(o for o in scene.objects if o.type == "MESH")
     wrap.shrinkwrap_type, wrap.distance = "NEAREST_SURFACE", 1.5
-    assert sandscape.blender.view_digest.digest(scene, sandscape_sun(scene), scene.camera, 0.25) is None
+    assert sandscape.addon.view_digest.digest(scene, sandscape_sun(scene), scene.camera, 0.25) is None
     assert saved_steps(path) > 0
     assert saved_steps(path) > 0
     assert keys_are_current(scene, sandscape)
@@ -142,13 +142,13 @@ def test_a_scene_not_shown_is_keyed_from_its_own_evaluation(tmp_path, sandscape)
     # As a script would, without showing the scene (an operator override would make its
     # depsgraph the active one, which writes back to the objects).
     other.sandscape_post.use_blur = other.sandscape_post.use_denoise = False
-    sandscape.blender.post.apply_post_effects(other, other.sandscape_post)
+    sandscape.addon.post.apply_post_effects(other, other.sandscape_post)
     for frame, yaw in ((1, 10.0), (31, -10.0)):  # keyed after the rays: the keys are stale now
         camera.rotation_euler.z = math.radians(yaw)
         camera.keyframe_insert("rotation_euler", index=2, frame=frame)
     assert bpy.context.scene == shown
     bpy.ops.wm.save_as_mainfile(filepath=str(tmp_path / "two.blend"))
-    keyed = sandscape.blender.sun_keys.keyed_curve(other.compositing_node_group)
+    keyed = sandscape.addon.sun_keys.keyed_curve(other.compositing_node_group)
     offset = 35.0 / 36.0 * math.tan(math.radians(10.0))
     u_first, u_last = keyed[0][1], keyed[-1][1]
     assert abs(u_first - 0.5) == pytest.approx(offset, abs=2e-3)

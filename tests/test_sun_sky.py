@@ -34,7 +34,7 @@ def grey_ground(elevation, sandscape):
     scene = readback.cycles_scene(resolution=(4, 4), samples=1024)
     scene.cycles.max_bounces = 1
     scenes.camera("ORTHO", location=(0.0, 0.0, 10.0), ortho_scale=1.0)
-    return scene, sandscape.blender.atmosphere.scene_sun(scene)
+    return scene, sandscape.addon.atmosphere.scene_sun(scene)
 
 
 def mean_render(scene):
@@ -69,7 +69,7 @@ def test_lit_sand_keeps_its_colour(sandscape, elevation):
     plane.data.materials.clear()
     bpy.ops.sandscape.add_sand_material(strength=0.0)
     sand = mean_render(scene)
-    base = sandscape.blender.sand.SAND_COLOR[:3]
+    base = sandscape.addon.sand.SAND_COLOR[:3]
     hue, saturation, _ = colorsys.rgb_to_hsv(*sand)
     base_hue = colorsys.rgb_to_hsv(*base)[0]
     difference = abs((hue - base_hue + 0.5) % 1.0 - 0.5) * 360.0
@@ -84,7 +84,7 @@ def test_add_atmosphere_sets_lamp_and_exposure_from_the_sky(sandscape):
     settings.sun_elevation = math.radians(30)
     settings.set_exposure = True  # off by default: the exposure is the artist's
     bpy.ops.sandscape.add_atmosphere()
-    sun = sandscape.blender.atmosphere.scene_sun(bpy.context.scene)
+    sun = sandscape.addon.atmosphere.scene_sun(bpy.context.scene)
     strength, colour = sandscape.core.sun.lamp(math.radians(30))
     assert sun.data.energy == pytest.approx(strength, rel=1e-5)
     assert tuple(sun.data.color) == pytest.approx(colour, abs=1e-5)

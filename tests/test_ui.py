@@ -91,7 +91,7 @@ def test_panel_offers_add_then_shows_live_inputs(sandscape):
     assert "Normal" not in names and "Base" not in names
     props = dict(props[:6])
     # The panel edits the material's own node sockets: live, no copy to keep in sync.
-    node = sandscape.blender.sand.glint_node(bpy.context.active_object.active_material)
+    node = sandscape.addon.sand.glint_node(bpy.context.active_object.active_material)
     assert props["Threshold"] == node.inputs["Threshold"]
 
 
@@ -157,17 +157,17 @@ def test_update_sand_material_starts_from_the_material(sandscape, glints, source
     plane = readback.uv_plane()
     bpy.ops.sandscape.add_sand_material(look="JOURNEY", glints=glints, source=source, image_resolution=8,
                                         strength=30.0, seed=0)
-    node = sandscape.blender.sand.glint_node(plane.active_material)
+    node = sandscape.addon.sand.glint_node(plane.active_material)
     for name, value in edits.items():  # edited in the sidebar
         node.inputs[name].default_value = value
     result, _ = operators.run_invoke("sandscape.add_sand_material")  # the Update button
     assert result == {"FINISHED"}
-    node = sandscape.blender.sand.glint_node(plane.active_material)
+    node = sandscape.addon.sand.glint_node(plane.active_material)
     for name, value in edits.items():
         assert node.inputs[name].default_value == pytest.approx(value), name
-    image = sandscape.blender.sand.image_node(plane.active_material)
+    image = sandscape.addon.sand.image_node(plane.active_material)
     assert (image is not None) == (source == "IMAGE")  # the source as it was
-    assert sandscape.blender.sand.structure(plane.active_material)[:2] == ("JOURNEY", glints)  # the look
+    assert sandscape.addon.sand.structure(plane.active_material)[:2] == ("JOURNEY", glints)  # the look
 
 
 def test_shift_a_offers_sandscape(sandscape):

@@ -168,14 +168,14 @@ def test_post_effects_keep_the_renders_alpha(lit_scene):
 
 
 def test_god_rays_follow_a_camera_turned_after_add_post_effects(lit_scene, sandscape):
-    keys = sandscape.blender.sun_keys
+    keys = sandscape.addon.sun_keys
     lit_scene.sandscape_post.use_blur = lit_scene.sandscape_post.use_denoise = False
     lit_scene.frame_start = lit_scene.frame_end = 1
     bpy.ops.sandscape.add_post_effects()
     tree = lit_scene.compositing_node_group
     lit_scene.camera.rotation_euler[2] += math.radians(20)  # the sun moves across the frame
     bpy.context.view_layer.update()
-    sun = sandscape.blender.atmosphere.scene_sun(lit_scene)
+    sun = sandscape.addon.atmosphere.scene_sun(lit_scene)
     expected = keys.sun_curve(lit_scene, sun, 0.25)
     assert abs(keys.keyed_curve(tree)[0][1] - expected[0][1]) > 0.1  # stale until saved or rendered
     readback.cycles_scene(lit_scene, resolution=(64, 36), samples=1)
@@ -190,14 +190,14 @@ def test_god_rays_follow_a_camera_turned_after_add_post_effects(lit_scene, sands
 
 
 def test_saving_re_keys_the_sun(lit_scene, sandscape, tmp_path):
-    keys = sandscape.blender.sun_keys
+    keys = sandscape.addon.sun_keys
     lit_scene.sandscape_post.use_blur = False
     lit_scene.frame_start, lit_scene.frame_end = 1, 5
     bpy.ops.sandscape.add_post_effects()
     lit_scene.camera.data.lens = 80  # a longer lens moves the sun away from the centre
     lit_scene.render.resolution_x, lit_scene.render.resolution_y = 300, 100
     bpy.ops.wm.save_as_mainfile(filepath=str(tmp_path / "keys.blend"))
-    sun = sandscape.blender.atmosphere.scene_sun(lit_scene)
+    sun = sandscape.addon.atmosphere.scene_sun(lit_scene)
     keyed = np.array(keys.keyed_curve(lit_scene.compositing_node_group))
     assert np.abs(keyed - keys.sun_curve(lit_scene, sun, 0.25)).max() <= 1e-6
 
@@ -266,7 +266,7 @@ def test_a_centimetre_scene_gets_metre_defaults_and_reports_its_units(sandscape)
     texel_units = bpy.data.images[0]["texel"] if bpy.data.images[0].get("texel") else next(
         i for i in bpy.data.images if i.get("texel"))["texel"]
     shown = reports[-1][1]
-    expected = sandscape.blender.units.length_text(scene, texel_units)
+    expected = sandscape.addon.units.length_text(scene, texel_units)
     assert expected in shown and ("mm" in expected or "cm" in expected), shown
     bpy.ops.sandscape.add_walker()
     box = ours(bpy.data.objects, "walker")[0]
@@ -303,10 +303,10 @@ def test_prints_in_a_scene_not_shown_land_on_its_evaluated_ground(sandscape):
     settings = other.sandscape_footprints
     settings.terrain, settings.walker, settings.resolution = terrain, walker, 256
     assert bpy.context.scene == shown
-    sandscape.blender.footprints.paint(other, settings)
+    sandscape.addon.footprints.paint(other, settings)
     points = next(o for o in other.objects if o.get("sandscape_object") == "footprints")
     frame = points.parent  # the print frame, on the terrain: points are in its space
-    origin = sandscape.blender.footprints.frame_world(other, frame)
+    origin = sandscape.addon.footprints.frame_world(other, frame)
     placed = [origin @ v.co for v in points.data.vertices]
     assert len(placed) >= 3 and [p.z for p in placed] == pytest.approx([1.0] * len(placed), abs=1e-4)
     assert all(18.0 < p.x < 22.0 for p in placed)

@@ -4,7 +4,7 @@ poll() allows."""
 
 import bpy
 
-from ..blender import atmosphere, dunes, sand
+from ..addon import atmosphere, dunes, sand
 
 
 class SandscapeTab:

@@ -7,7 +7,7 @@ before they go.
 
 import bpy
 
-from ..blender import post_handlers, settings, sparkle_footprint
+from ..addon import post_handlers, settings, sparkle_footprint
 from ..operators import atmosphere, clouds, demo, dunes, footprints, nodes, render, sand, walker
 from ..operators import post as post_operators
 from . import menus, panels

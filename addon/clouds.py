@@ -5,7 +5,7 @@ the box's sides (core.clouds.region_window), so no side of the box ever shows.
 
 An object volume, not a world volume: a world volume would block the sun lamp. Two routes:
 - Voxel Grid (default): geometry nodes evaluate Weather Map -> Cloud Density once per voxel
-  (blender/cloud_grid.py); the material reads the grid. The grid drifts with the wind.
+  (addon/cloud_grid.py); the material reads the grid. The grid drifts with the wind.
 - Procedural: a box whose material evaluates Weather Map -> Cloud Density at every step; its
   Frame inputs are driven by the expression `frame`, evaluated without Python auto-run.
 Either way the density scatters with a dual-lobe or Mie phase.
