@@ -282,7 +282,8 @@ class SandscapePostSettings(bpy.types.PropertyGroup):
     use_god_rays: BoolProperty(name="God Rays", default=True,
                                description="Screen-space light scattering towards the sun (GPU Gems 3)")
     samples: IntProperty(name="Samples", default=32, soft_min=4, soft_max=128,
-                         description="Samples along each ray: more is smoother and slower")
+                         description="The seed's sample count: with Decay, how far the rays reach before "
+                         "they fade (the group always sums the same 256 taps: more is not slower)")
     ray_density: FloatProperty(name="Density", default=0.9, soft_min=0.0, soft_max=1.0,
                                description="Fraction of the way to the sun the samples span")
     ray_weight: FloatProperty(name="Weight", default=0.1, soft_min=0.0, soft_max=1.0,

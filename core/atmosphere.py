@@ -8,6 +8,8 @@ HENYEY_GREENSTEIN phases of Volume Scatter, and the per-channel scattering colou
 
 import numpy as np
 
+from . import shaping
+
 DEFAULT_WAVELENGTHS = (680.0, 550.0, 440.0)  # nm: red, green, blue
 REFERENCE_WAVELENGTH = 550.0  # nm: the channel whose coefficient equals the set density
 CONTRAST_THRESHOLD = 0.02  # Koschmieder: the eye just tells a dark object from the sky at 2 %
@@ -27,8 +29,7 @@ def henyey_greenstein(cos_theta, g):
     """Henyey-Greenstein phase (1 - g^2) / (4 pi (1 + g^2 - 2 g cos)^1.5), |g| < 1, per sr."""
     if not -1.0 < g < 1.0:
         raise AtmosphereError(f"anisotropy must lie in (-1, 1), got {g}")
-    c = np.asarray(cos_theta, dtype=np.float64)
-    return (1.0 - g * g) / (4.0 * np.pi * (1.0 + g * g - 2.0 * g * c) ** 1.5)
+    return shaping.henyey_greenstein(cos_theta, g)
 
 
 def rayleigh_coefficients(density, wavelengths=DEFAULT_WAVELENGTHS, reference=REFERENCE_WAVELENGTH):

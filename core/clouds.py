@@ -25,6 +25,7 @@ import math
 import numpy as np
 
 from . import noise_perlin as noise
+from .shaping import henyey_greenstein, smoothstep, wind_direction  # noqa: F401 (the clouds' API)
 
 GRADIENTS = {  # seed 001: (a, b, c, d) of smoothstep(a, b, h) - smoothstep(c, d, h)
     "STRATUS": (0.0, 0.065, 0.203, 0.371),
@@ -69,13 +70,6 @@ PRECIPITATION_GAIN = 2.0  # full precipitation triples the density
 SEED_STEP = np.array([37.17, 91.43, 13.71])  # noise-space offset per seed
 CURL_OFFSET = np.array([19.1, 47.3, 71.9])  # decorrelates the second distortion noise
 
-
-def smoothstep(a, b, x):
-    """Blender's Map Range (smooth step): 0 below a, 1 from b up, (3 - 2t) t^2 between."""
-    a, b, x = np.broadcast_arrays(*(np.asarray(v, np.float64) for v in (a, b, x)))
-    span = np.where(b > a, b - a, 1.0)
-    t = np.clip((x - a) / span, 0.0, 1.0)
-    return np.where(x < a, 0.0, np.where(x >= b, 1.0, t * t * (3.0 - 2.0 * t)))
 
 
 def remap(x, low, high, new_low, new_high, clamp=True):
@@ -148,12 +142,6 @@ def mixed_type(xy, map_scale, seed):
     value = noise.fbm(noise.perlin_2d, points, 1.0).astype(np.float64)
     return np.clip((value - 0.3) / 0.4, 0.0, 1.0)
 
-
-def wind_direction(wind):
-    """Unit horizontal wind direction; along X when calm."""
-    flat = np.array([wind[0], wind[1], 0.0], np.float64)
-    length = np.linalg.norm(flat)
-    return flat / length if length > 1e-9 else np.array([1.0, 0.0, 0.0])
 
 
 def shape_noise(points, shape_scale, seed):
@@ -252,12 +240,6 @@ def shaped_cloudiness(points, p, cover):
 
 # ---------------------------------------------------------------- phase
 
-
-def henyey_greenstein(cos_theta, g):
-    """HG phase per steradian: (1 - g^2) / (4 pi (1 + g^2 - 2 g cos)^1.5). (Seed 000 prints the
-    1 / (4 pi) the wrong way up.)"""
-    cos_theta = np.asarray(cos_theta, np.float64)
-    return (1.0 - g * g) / (4.0 * math.pi * (1.0 + g * g - 2.0 * g * cos_theta) ** 1.5)
 
 
 def dual_lobe(cos_theta, forward, back, back_weight):

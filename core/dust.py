@@ -8,7 +8,7 @@ ground as exp(-height / falloff).
 import numpy as np
 
 from . import noise_perlin
-from .clouds import smoothstep
+from .shaping import smoothstep
 
 NOISE_DETAIL = 3.0  # the group's Noise Texture: Detail 3, roughness 0.5, lacunarity 2, 2D
 

@@ -24,6 +24,8 @@ or per print.
 
 import numpy as np
 
+from .shaping import smoothstep
+
 F32 = np.float32
 LOG_FLOOR = -69.0  # log(1e-30): a fully pressed texel keeps no rim, without log(0)
 CHUNK_ENTRIES = 1 << 22  # texel-print pairs per batch: bounds memory at any print count
@@ -90,10 +92,6 @@ def sole_distance(a, b, sole):
     return np.where(k < 0, np.hypot(px, py) - r1,
                     np.where(k > along * h, np.hypot(px, py - h) - r2, along * px + slope * py - r1))
 
-
-def smoothstep(edge0, edge1, x):
-    t = np.clip((x - edge0) / (edge1 - edge0), 0.0, 1.0) if edge1 > edge0 else (x >= edge1) * 1.0
-    return t * t * (3.0 - 2.0 * t)
 
 
 def sole_profile(distance, sole, texel):

@@ -17,6 +17,7 @@ import numpy as np
 
 from .glints import F32, _safe_divide
 from .noise_hash import white_noise_3d, white_noise_4d, white_noise_4d_color
+from .shaping import smoothstep, wind_direction
 
 MIN_FACET_COS = 0.15  # a facet tilts at most acos(0.15) = 81 degrees, whatever the power
 TOON_SIZE = 0.839  # acos(0.25) over pi / 2: fully lit where N'.L reaches 0.25, Journey's 4 N'.L
@@ -128,27 +129,18 @@ def rim(n_dot_v, power, strength):
     return strength * (1.0 - np.clip(n_dot_v, 0.0, 1.0)) ** power
 
 
-def _smoothstep(edge0, edge1, x):
-    t = np.clip((np.asarray(x, np.float64) - edge0) / (edge1 - edge0), 0.0, 1.0)
-    return t * t * (3.0 - 2.0 * t)
-
 
 def ripple_weight(normal, wind, steep_fraction, lee_fraction):
     """How much ripple a surface keeps: Steep Fraction at the 35 degree angle of repose (less in
     between), and less again on slopes turned away from the wind, down to Lee Fraction."""
     normal = _unit(normal)
-    direction = _wind_direction(wind)
+    direction = wind_direction(wind)[:2]
     slope = np.arccos(np.clip(np.abs(normal[..., 2]), 0.0, 1.0))
-    steep = 1.0 + (steep_fraction - 1.0) * _smoothstep(0.0, REPOSE, slope)
+    steep = 1.0 + (steep_fraction - 1.0) * smoothstep(0.0, REPOSE, slope)
     downwind = normal[..., 0] * direction[0] + normal[..., 1] * direction[1]
-    lee = 1.0 + (lee_fraction - 1.0) * _smoothstep(0.0, np.sin(REPOSE), downwind)
+    lee = 1.0 + (lee_fraction - 1.0) * smoothstep(0.0, np.sin(REPOSE), downwind)
     return steep * lee
 
-
-def _wind_direction(wind):
-    w = np.array([wind[0], wind[1]], dtype=np.float64)
-    length = np.hypot(*w)
-    return w / length if length > 1e-9 else np.array([1.0, 0.0])
 
 
 def ripple_lattice(position, scale):
@@ -194,7 +186,7 @@ def ripples(position, normal, wind, wavelength, amplitude, steep_fraction=0.2, l
     """
     position = np.asarray(position, np.float64)
     normal = _unit(normal)
-    direction = _wind_direction(wind)
+    direction = wind_direction(wind)[:2]
     k = 2 * np.pi / wavelength
     m, g, dm = ripple_lattice(position, meander_scale)
     phase = k * (position[..., 0] * direction[0] + position[..., 1] * direction[1]) + \
