@@ -24,6 +24,9 @@ def scene_depsgraph(scene):
     if layer == getattr(bpy.context, "view_layer", None):
         return bpy.context.evaluated_depsgraph_get()
     depsgraph = layer.depsgraph
+    if depsgraph is None:  # never evaluated yet: the context makes it, without stepping a frame
+        with bpy.context.temp_override(scene=scene, view_layer=layer):
+            return bpy.context.evaluated_depsgraph_get()
     depsgraph.update()
     return depsgraph
 

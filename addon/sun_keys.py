@@ -8,7 +8,7 @@ import bpy
 import numpy as np
 
 from ..core import post
-from . import evaluation, shot, view_digest
+from . import evaluation, keyed_motion, shot, view_digest
 from . import ownership as own
 
 SUN_KEY, RAYS = "Sandscape Sun Key", "Sandscape God Rays"  # node names in the post tree
@@ -36,8 +36,42 @@ def view_projection(scene, camera, depsgraph=None):
     return projection @ np.array(camera.matrix_world.inverted())
 
 
+def _place(projection, direction, fade, frame):
+    (u, v), in_front = post.screen_position(projection, direction)
+    intensity = post.sun_intensity((u, v), in_front, fade)
+    if not in_front or not np.isfinite((u, v)).all():
+        u, v = 0.5, 0.5  # any finite place: the intensity is 0
+    return (frame, float(u), float(v), float(intensity))
+
+
+def curve_from_keys(scene, sun, fade):
+    """The sun curve read from the keyframes, without stepping a frame; None where more than
+    plain keys move the camera or the sun (keyed_motion.py), or markers switch cameras."""
+    camera = scene.camera
+    if camera is None or any(marker.camera is not None for marker in scene.timeline_markers):
+        return None
+    if not keyed_motion.still_camera_data(camera):
+        return None
+    frames = range(scene.frame_start, scene.frame_end + 1)
+    cameras = keyed_motion.world_matrices(scene, camera, frames)
+    suns = keyed_motion.world_matrices(scene, sun, frames) if cameras is not None else None
+    if suns is None:
+        return None
+    projection = view_projection(scene, camera) @ np.array(camera.matrix_world)  # the lens alone
+    return [_place(projection @ np.array(view.inverted()), np.array(lamp.col[2][:3]), fade, frame)
+            for frame, view, lamp in zip(frames, cameras, suns, strict=True)]
+
+
 def sun_curve(scene, sun, fade):
-    """[(frame, u, v, intensity)] of the sun seen by the scene camera on every frame of the range."""
+    """[(frame, u, v, intensity)] of the sun seen by the scene camera on every frame of the range:
+    from the keys where they are all that move the camera and the sun, else by stepping the
+    frames."""
+    from_keys = curve_from_keys(scene, sun, fade)
+    return from_keys if from_keys is not None else stepped_curve(scene, sun, fade)
+
+
+def stepped_curve(scene, sun, fade):
+    """The sun curve by stepping every frame: whatever moves the camera and the sun."""
     kept = scene.frame_current
     curve = []
     try:
@@ -45,12 +79,7 @@ def sun_curve(scene, sun, fade):
             scene.frame_set(frame)
             depsgraph = evaluation.scene_depsgraph(scene)  # a scene not shown: its own evaluation
             direction = np.array(sun.evaluated_get(depsgraph).matrix_world.col[2][:3])
-            projection = view_projection(scene, scene.camera, depsgraph)
-            (u, v), in_front = post.screen_position(projection, direction)
-            intensity = post.sun_intensity((u, v), in_front, fade)
-            if not in_front or not np.isfinite((u, v)).all():
-                u, v = 0.5, 0.5  # any finite place: the intensity is 0
-            curve.append((frame, float(u), float(v), float(intensity)))
+            curve.append(_place(view_projection(scene, scene.camera, depsgraph), direction, fade, frame))
     finally:
         scene.frame_set(kept)
     return curve

@@ -8,6 +8,7 @@ import math
 import bpy
 import numpy as np
 import pytest
+from mathutils import Euler
 
 from devtools import scenes
 
@@ -43,7 +44,7 @@ def keys_are_current(scene, sandscape):
     keys = sandscape.addon.sun_keys
     sun = sandscape.addon.atmosphere.scene_sun(scene)
     keyed = np.array(keys.keyed_curve(scene.compositing_node_group))
-    fresh = np.array(keys.sun_curve(scene, sun, 0.25))
+    fresh = np.array(keys.stepped_curve(scene, sun, 0.25))  # stepping the frames, whatever moves
     return keyed.shape == fresh.shape and np.abs(keyed - fresh).max() <= 1e-6
 
 
@@ -229,3 +230,40 @@ def test_rigs_the_camera_rides_re_key_when_they_change(shot, sandscape, rig, cha
     assert not keys_are_current(scene, sandscape)  # the change moved the sun on screen
     assert saved_steps(path) > 0
     assert keys_are_current(scene, sandscape)
+
+
+def test_keyed_cameras_and_suns_are_read_from_their_keys_without_stepping(sandscape):
+    """A camera keyed in quaternions on a keyed, turned and scaled rig, and a keyed sun: the sun's
+    place read from the keys matches stepping the frames within 1e-6, and nothing steps; a
+    constraint on the camera sends it back to stepping."""
+    keys = sandscape.addon.sun_keys
+    scene = bpy.context.scene
+    scene.frame_start, scene.frame_end = 1, 60
+    rig = bpy.data.objects.new("Rig", None)
+    scene.collection.objects.link(rig)
+    rig.scale = (1.0, 2.0, 1.0)
+    camera = scenes.camera("PERSP", location=(0.0, -10.0, 2.0), rotation=(math.radians(90), 0.0, 0.0))
+    camera.parent = rig
+    camera.matrix_parent_inverse = rig.matrix_world.inverted()
+    camera.rotation_mode = "QUATERNION"
+    for frame, yaw, x in ((1, 0.0, 0.0), (30, 25.0, 3.0), (60, -10.0, -2.0)):
+        rig.rotation_euler.z = math.radians(yaw)
+        rig.location.x = x
+        rig.keyframe_insert("rotation_euler", frame=frame)
+        rig.keyframe_insert("location", frame=frame)
+        camera.rotation_quaternion = Euler((math.radians(90 + frame / 10), 0.0, math.radians(frame / 5))
+                                           ).to_quaternion()
+        camera.keyframe_insert("rotation_quaternion", frame=frame)
+    sun = bpy.data.objects.new("Sun", bpy.data.lights.new("Sun", "SUN"))
+    scene.collection.objects.link(sun)
+    for frame, tilt in ((1, 85.0), (60, 83.0)):  # 5 and 7 degrees up, ahead of the camera
+        sun.rotation_euler = (math.radians(tilt), 0.0, math.radians(180.0))
+        sun.keyframe_insert("rotation_euler", frame=frame)
+    with FrameCounter() as frames:
+        from_keys = keys.curve_from_keys(scene, sun, 0.25)
+    assert from_keys is not None and frames.count == 0
+    stepped = np.array(keys.stepped_curve(scene, sun, 0.25))
+    assert np.abs(np.array(from_keys) - stepped).max() <= 1e-6
+    assert np.ptp(stepped[:, 1]) > 0.05 and stepped[:, 3].max() > 0  # the sun moves on screen, in view
+    camera.constraints.new("LIMIT_LOCATION")
+    assert keys.curve_from_keys(scene, sun, 0.25) is None
