@@ -18,8 +18,8 @@ from ..core import sun as sky_sun
 from ..core.clouds import layer_region as holding_region
 from ..node_groups import dust_field, dust_volume
 from ..node_groups import helper as h
+from . import evaluation, sand, shot, units
 from . import ownership as own
-from . import sand, shot, units
 from .sun_lamp import ensure_sun, is_ours, scene_sun  # noqa: F401 (the atmosphere's API)
 
 # Bump when build_sky_nodes changes: a world built by an older version is rebuilt.
@@ -225,9 +225,7 @@ def _build_volume_material(material, coefficients, dust, scene):
         field = h.add_node(tree, "ShaderNodeGroup", name="Sandscape Dust Field", label="Dust Field",
                            node_tree=h.ensure_group(dust_field), inputs=dust["field"])
         field.inputs["FPS"].default_value = shot.frames_per_second(scene)
-        driver = field.inputs["Frame"].driver_add("default_value").driver
-        driver.type = "SCRIPTED"
-        driver.expression = "frame"  # a simple expression: evaluated without Python auto-run
+        evaluation.drive_by_frame(field.inputs["Frame"])
         factor = field.outputs["Factor"]
 
     def set_density(socket, value, name):

@@ -19,7 +19,7 @@ import numpy as np
 from ..core import clouds as twin
 from ..node_groups import cloud_density, weather_map
 from ..node_groups import helper as h
-from . import cloud_grid, units
+from . import cloud_grid, evaluation, units
 from . import ownership as own
 from .shot import camera_views, frames_per_second, reach_points
 
@@ -118,9 +118,7 @@ def set_mesh(layer, verts, faces):
 
 
 def _drive_frame(node):
-    driver = node.inputs["Frame"].driver_add("default_value").driver
-    driver.type = "SCRIPTED"
-    driver.expression = "frame"  # a simple expression: evaluated without Python auto-run
+    evaluation.drive_by_frame(node.inputs["Frame"])
 
 
 def density_inputs(scene, s, region, fade, frame_zero):

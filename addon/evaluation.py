@@ -45,3 +45,24 @@ def mesh_triangles(mesh):
     triangles = np.empty(len(mesh.loop_triangles) * 3, np.int32)
     mesh.loop_triangles.foreach_get("vertices", triangles)
     return local.reshape(-1, 3).astype(np.float64), triangles.reshape(-1, 3)
+
+
+def stepped_frames(scene, frames):
+    """Step the scene through the frames, yielding each, and back to the frame it was on after
+    (also when the caller stops early or raises)."""
+    kept = scene.frame_current
+    try:
+        for frame in frames:
+            scene.frame_set(int(frame))  # also the current one: unkeyed edits give way to the keys
+            yield frame
+    finally:
+        scene.frame_set(kept)
+
+
+def drive_by_frame(socket):
+    """Drive a socket's value by the scene frame: a simple expression, which runs without Python
+    auto-run (a farm, or a file opened with scripts off)."""
+    driver = socket.driver_add("default_value").driver
+    driver.type = "SCRIPTED"
+    driver.expression = "frame"
+    return driver

@@ -71,56 +71,46 @@ def frame_list(frame_start, frame_end):
 
 def sample_walker(scene, walker, frames, progress=None):
     """World positions of the walker's evaluated matrix_world at each frame: (F, 3)."""
-    kept = scene.frame_current
     positions = np.empty((len(frames), 3))
-    try:
-        for index, frame in enumerate(frames):
-            scene.frame_set(int(frame))
-            # The evaluated object: only the shown scene's depsgraph writes back to the original.
-            evaluated = walker.evaluated_get(evaluation.scene_depsgraph(scene))
-            positions[index] = evaluated.matrix_world.translation
-            if progress:
-                progress(index / len(frames))
-    finally:
-        scene.frame_set(kept)
+    for index, _ in enumerate(evaluation.stepped_frames(scene, frames)):
+        # The evaluated object: only the shown scene's depsgraph writes back to the original.
+        evaluated = walker.evaluated_get(evaluation.scene_depsgraph(scene))
+        positions[index] = evaluated.matrix_world.translation
+        if progress:
+            progress(index / len(frames))
     return positions
 
 
 def sample_particles(scene, emitter, frames):
     """Each particle where it is born: world positions (M, 3), birth frames, directions of travel."""
-    kept = scene.frame_current
     found_positions, found_births, found_directions = [], [], []
     previous = None
-    try:
-        for frame in frames:
-            scene.frame_set(int(frame))
-            depsgraph = evaluation.scene_depsgraph(scene)
-            evaluated = emitter.evaluated_get(depsgraph)
-            if not evaluated.particle_systems:
-                raise FootprintError(f"'{emitter.name}' has no particle system")
-            particles = evaluated.particle_systems[0].particles
-            count = len(particles)
-            state = np.empty(count, np.int32)
-            birth = np.empty(count, np.float32)
-            location = np.empty(count * 3, np.float32)
-            velocity = np.empty(count * 3, np.float32)
-            particles.foreach_get("alive_state", state)
-            particles.foreach_get("birth_time", birth)
-            particles.foreach_get("location", location)
-            particles.foreach_get("velocity", velocity)
-            # Born during this frame step (the first frame takes everything born so far).
-            newborn = (state == 3) & (birth <= frame) & ((birth > frame - 1) | (frame == frames[0]))
-            here = np.array(emitter.matrix_world.translation)
-            motion = here - previous if previous is not None else np.zeros(3)
-            previous = here
-            direction = velocity.reshape(-1, 3)[newborn]
-            still = np.linalg.norm(direction[:, :2], axis=1) < 1e-9
-            direction[still] = motion
-            found_positions.append(location.reshape(-1, 3)[newborn])
-            found_births.append(birth[newborn])
-            found_directions.append(direction)
-    finally:
-        scene.frame_set(kept)
+    for frame in evaluation.stepped_frames(scene, frames):
+        depsgraph = evaluation.scene_depsgraph(scene)
+        evaluated = emitter.evaluated_get(depsgraph)
+        if not evaluated.particle_systems:
+            raise FootprintError(f"'{emitter.name}' has no particle system")
+        particles = evaluated.particle_systems[0].particles
+        count = len(particles)
+        state = np.empty(count, np.int32)
+        birth = np.empty(count, np.float32)
+        location = np.empty(count * 3, np.float32)
+        velocity = np.empty(count * 3, np.float32)
+        particles.foreach_get("alive_state", state)
+        particles.foreach_get("birth_time", birth)
+        particles.foreach_get("location", location)
+        particles.foreach_get("velocity", velocity)
+        # Born during this frame step (the first frame takes everything born so far).
+        newborn = (state == 3) & (birth <= frame) & ((birth > frame - 1) | (frame == frames[0]))
+        here = np.array(emitter.matrix_world.translation)
+        motion = here - previous if previous is not None else np.zeros(3)
+        previous = here
+        direction = velocity.reshape(-1, 3)[newborn]
+        still = np.linalg.norm(direction[:, :2], axis=1) < 1e-9
+        direction[still] = motion
+        found_positions.append(location.reshape(-1, 3)[newborn])
+        found_births.append(birth[newborn])
+        found_directions.append(direction)
     return tuple(np.concatenate(found).astype(np.float64)
                  for found in (found_positions, found_births, found_directions))
 

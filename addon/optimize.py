@@ -8,8 +8,8 @@ rerouted, so a decision is easy to undo by hand (and Ctrl+Z undoes the whole ope
 import numpy as np
 from mathutils import Vector
 
+from . import evaluation, post, sand, sun_keys
 from . import ownership as own
-from . import post, sand, sun_keys
 
 VOLUME_SHADERS = {"ShaderNodeVolumeScatter", "ShaderNodeVolumeAbsorption", "ShaderNodeVolumePrincipled",
                   "ShaderNodeVolumeCoefficients"}
@@ -117,21 +117,17 @@ def _seen_by_camera(scene, obj):
     camera = scene.camera
     if camera is None:
         return True
-    kept = scene.frame_current
-    try:
-        for frame in sorted({scene.frame_start, (scene.frame_start + scene.frame_end) // 2, scene.frame_end}):
-            scene.frame_set(frame)
-            corners = np.array([obj.matrix_world @ Vector(c) for c in obj.bound_box])
-            clip = np.c_[corners, np.ones(8)] @ sun_keys.view_projection(scene, camera).T
-            w = clip[:, 3]
-            if (w > 0).all():
-                ndc = clip[:, :2] / w[:, None]
-                if (ndc.min(0) <= 1).all() and (ndc.max(0) >= -1).all():
-                    return True
-            elif (w > 0).any():
+    frames = sorted({scene.frame_start, (scene.frame_start + scene.frame_end) // 2, scene.frame_end})
+    for _ in evaluation.stepped_frames(scene, frames):
+        corners = np.array([obj.matrix_world @ Vector(c) for c in obj.bound_box])
+        clip = np.c_[corners, np.ones(8)] @ sun_keys.view_projection(scene, camera).T
+        w = clip[:, 3]
+        if (w > 0).all():
+            ndc = clip[:, :2] / w[:, None]
+            if (ndc.min(0) <= 1).all() and (ndc.max(0) >= -1).all():
                 return True
-    finally:
-        scene.frame_set(kept)
+        elif (w > 0).any():
+            return True
     return False
 
 

@@ -129,21 +129,14 @@ def _sparkle_weight(tree, layers, glint, clean):
 
     The sand material writes where grains can glint into the AOV. OIDN takes a one-pixel sparkle
     for noise and smears it away, so the glint light stays raw; but only where it is a sparkle:
-    the sand's own sheen and the facets that catch no sun are dim, and sampled raw they were
-    the frame's noise (σ 0.022 on the ground at 16 spp, against 0.004 with all of it denoised).
-    The ground is the darkest denoised pixel of the 3x3 around, not the rest of the raw pixel: a
-    grain that covers most of a pixel leaves little rest, and its dim mirror was kept raw as a
-    dark speck (a quarter of the demo's noise at Preview).
-    Two ramps (SPARKLE_BAR, DENOISED_BAR), multiplied. The glint light alone let through dim
-    grains a few samples caught: raw at two or three times their light in one seed, gone in the
-    next (half the demo's noise at Preview, in 0.2 % of its pixels). The denoiser takes such a
-    spike out and keeps most of a sparkle many samples saw, so the denoised pixel must stand
-    above the ground too. Measured on the demo at Preview, 320x180 (σ seed to seed; glint RMSE
-    and sparkle light kept against 1024 samples): glint bar alone 0.0059, 0.046, 1.03; with the
-    denoised bar at 1.1-1.3, 0.0047, 0.036, 0.94 at 72 spp. A denoised bar of 1.2-1.6 is quieter,
-    but the 16-sample sparkles of tests/test_denoise_but_glints.py then kept 0.918 of their light
-    on 5.0, whose denoiser keeps less of them (0.959 at 1.1-1.3). More rows: README, "Denoising
-    all but the glints".
+    the sand's own sheen and the facets that catch no sun are dim, and sampled raw they were the
+    frame's noise. The ground is the darkest denoised pixel of the 3x3 around, not the rest of
+    the raw pixel: a grain that covers most of a pixel leaves little rest, and its dim mirror was
+    kept raw as a dark speck. Two ramps (SPARKLE_BAR, DENOISED_BAR), multiplied: the glint light
+    alone let through dim grains a few samples caught, raw at two or three times their light in
+    one seed and gone in the next. The denoiser takes such a spike out and keeps most of a
+    sparkle many samples saw, so the denoised pixel must stand above the ground too. The bars
+    were chosen from measured noise and sparkle light: README, "Denoising all but the glints".
     """
     grains = h.math(tree, "GREATER_THAN", layers.outputs[GLINT_AOV], 0.0, label="Glinting Grains Hit")
     glint_level = _luminance(tree, glint)

@@ -26,8 +26,8 @@ from ..node_groups import (
     sand_normal,
 )
 from ..node_groups import helper as h
+from . import evaluation, sparkle_footprint, units
 from . import ownership as own
-from . import sparkle_footprint, units
 
 SAND_COLOR = core_sand.SAND_COLOR
 LOOKS = {"PHYSICAL": physical_sand, "JOURNEY": journey_sand}
@@ -372,9 +372,7 @@ def attach_footprints(material, image, space_object, values):
         h.link(tree, texture.outputs["Color"], node.inputs["Print Map"])
         h.link(tree, coords.outputs["Object"], node.inputs["Vector"])
         h.link(tree, node.outputs["Displacement"], output.inputs["Displacement"])
-        driver = node.inputs["Frame"].driver_add("default_value").driver
-        driver.type = "SCRIPTED"
-        driver.expression = "frame"  # a simple expression: evaluated without Python auto-run
+        evaluation.drive_by_frame(node.inputs["Frame"])
         if own.node(tree, RIPPLE_DISPLACEMENT) is not None:  # prints and ripples displace together
             _ripple_displacement(material, False)
             _ripple_displacement(material, True)

@@ -3,6 +3,8 @@ fitted to."""
 
 import numpy as np
 
+from . import evaluation
+
 FRAME_SAMPLES = 16  # camera positions sampled over the frame range
 
 
@@ -26,15 +28,11 @@ def camera_views(scene, camera):
     if animated:
         sampled = np.linspace(scene.frame_start, scene.frame_end, FRAME_SAMPLES)
         frames = sorted({int(round(f)) for f in sampled} | {scene.frame_current})
-    current, views = scene.frame_current, []
-    for frame in frames:
-        if frame != scene.frame_current:
-            scene.frame_set(frame)
+    views = []
+    for _ in evaluation.stepped_frames(scene, frames):
         corners = [tuple(v) for v in camera.data.view_frame(scene=scene)]
         views.append({"matrix": np.array(camera.matrix_world), "ortho": camera.data.type == "ORTHO",
                       "corners": corners})
-    if scene.frame_current != current:
-        scene.frame_set(current)
     return views
 
 

@@ -72,16 +72,11 @@ def sun_curve(scene, sun, fade):
 
 def stepped_curve(scene, sun, fade):
     """The sun curve by stepping every frame: whatever moves the camera and the sun."""
-    kept = scene.frame_current
     curve = []
-    try:
-        for frame in range(scene.frame_start, scene.frame_end + 1):
-            scene.frame_set(frame)
-            depsgraph = evaluation.scene_depsgraph(scene)  # a scene not shown: its own evaluation
-            direction = np.array(sun.evaluated_get(depsgraph).matrix_world.col[2][:3])
-            curve.append(_place(view_projection(scene, scene.camera, depsgraph), direction, fade, frame))
-    finally:
-        scene.frame_set(kept)
+    for frame in evaluation.stepped_frames(scene, range(scene.frame_start, scene.frame_end + 1)):
+        depsgraph = evaluation.scene_depsgraph(scene)  # a scene not shown: its own evaluation
+        direction = np.array(sun.evaluated_get(depsgraph).matrix_world.col[2][:3])
+        curve.append(_place(view_projection(scene, scene.camera, depsgraph), direction, fade, frame))
     return curve
 
 
