@@ -50,6 +50,7 @@ def render(directory):
         air.density, air.use_haze = 0.0, False
         air.set_exposure = True
         readback.cycles_scene(scene, RESOLUTION, SAMPLES)
+        scene.cycles.volume_biased = True  # ray marching, as the quality presets set it
         bpy.ops.sandscape.add_atmosphere()
         started = time.perf_counter()
         bpy.ops.sandscape.add_clouds()

@@ -68,7 +68,8 @@ class SANDSCAPE_OT_add_clouds(SceneSettings, SandscapeOperator, bpy.types.Operat
         width = units.length_text(scene, done["region"][2] - done["region"][0])
         depth = units.length_text(scene, done["region"][3] - done["region"][1])
         self.report({"INFO"}, f"Cloud layer '{done['layer'].name}': {values['cloud_type'].lower()}, coverage "
-                    f"{values['coverage']:.2f}, {width} × {depth} of sky, {how}")
+                    f"{values['coverage']:.2f}, {width} × {depth} of sky, {how}"
+                    + ("; changed: " + "; ".join(done["changes"]) if done["changes"] else ""))
         if done["warning"]:
             self.report({"WARNING"}, done["warning"])
         return {"FINISHED"}

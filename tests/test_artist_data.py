@@ -241,3 +241,14 @@ def test_a_view_layer_that_does_not_render_is_not_the_one_read():
     operators.run_execute("sandscape.add_post_effects")
     layers = next(n for n in scene.compositing_node_group.nodes if n.bl_idname == "CompositorNodeRLayers")
     assert layers.layer == "Beauty" and second.use_pass_environment and not first.use_pass_environment
+
+
+def test_add_clouds_leaves_volume_sampling_and_names_the_steps_it_raises():
+    scene = ground()
+    bpy.ops.sandscape.add_atmosphere()
+    scene.cycles.volume_biased, scene.cycles.volume_max_steps = False, 64
+    result, reports = operators.run_execute("sandscape.add_clouds", evaluation="PROCEDURAL")
+    line = next(text for kinds, text in reports if "INFO" in kinds)
+    assert result == {"FINISHED"} and not scene.cycles.volume_biased
+    assert scene.cycles.volume_max_steps > 64
+    assert f"changed: volume max steps 64 → {scene.cycles.volume_max_steps}" in line

@@ -29,6 +29,7 @@ def side_lit_layer(ground=False):
     bpy.ops.wm.read_homefile(use_empty=True)
     scene = bpy.context.scene
     readback.cycles_scene(scene, (160, 100), samples=16)
+    scene.cycles.volume_biased = True  # ray marching, as the quality presets set it
     scene.cycles.volume_bounces, scene.cycles.max_bounces = 8, 8
     scene.render.film_transparent = True
     middle = BASE + THICKNESS / 2

@@ -46,6 +46,7 @@ def transmittance_up(resolution=96, **values):
     scene.camera.data.clip_end = 1e6
     white_sky()
     readback.cycles_scene(scene, (resolution, resolution), samples=1)  # the frame the layer spans
+    scene.cycles.volume_biased = True  # ray marching, as the quality presets set it
     values = {"reach": 1.0, "voxel": 200.0, **values}  # the frame itself is the sky it needs
     assert bpy.ops.sandscape.add_clouds(**values) == {"FINISHED"}
     layer = cloud_layer(scene)
@@ -132,6 +133,7 @@ def sun_scene(elevation):
     """Ground lit by a sun of no angle under a black sky, seen from above; no volume bounces."""
     scene = bpy.context.scene
     readback.cycles_scene(scene, (16, 16), samples=4)
+    scene.cycles.volume_biased = True  # ray marching, as the quality presets set it
     scene.cycles.volume_bounces = 0
     scene.cycles.max_bounces = 0
     bpy.ops.mesh.primitive_plane_add(size=400.0)
@@ -189,6 +191,7 @@ def test_clouds_shade_the_ground_where_they_cover_the_sky():
     bpy.ops.wm.read_homefile(use_empty=True)
     scene = bpy.context.scene
     readback.cycles_scene(scene, (96, 96), samples=4)
+    scene.cycles.volume_biased = True  # ray marching, as the quality presets set it
     scene.cycles.volume_bounces = scene.cycles.max_bounces = 0
     bpy.ops.mesh.primitive_plane_add(size=3 * UP_SIZE)
     scenes.camera("ORTHO", location=(0.0, 0.0, 500.0), ortho_scale=UP_SIZE)
@@ -279,6 +282,7 @@ def test_extreme_settings_render_finite(props):
     scenes.camera("PERSP", location=(0.0, 0.0, 2.0), rotation=(math.radians(75.0), 0.0, 0.0), lens=20.0)
     scene.camera.data.clip_end = 1e6
     readback.cycles_scene(scene, (24, 16), samples=2)
+    scene.cycles.volume_biased = True  # ray marching, as the quality presets set it
     bpy.ops.mesh.primitive_plane_add(size=100.0)
     scene.sandscape_atmosphere.density, scene.sandscape_atmosphere.use_haze = 0.0, False
     bpy.ops.sandscape.add_atmosphere()
@@ -294,6 +298,7 @@ def test_extreme_wind_renders_finite():
     scenes.camera("PERSP", location=(0.0, 0.0, 2.0), rotation=(math.radians(75.0), 0.0, 0.0), lens=20.0)
     scene.camera.data.clip_end = 1e6
     readback.cycles_scene(scene, (24, 16), samples=2)
+    scene.cycles.volume_biased = True  # ray marching, as the quality presets set it
     scene.sandscape_atmosphere.wind = (9000.0, -9000.0, 100.0)
     scene.frame_end = 40  # still 15 km of drift: the grid coarsens to its budget
     for evaluation in ("GRID", "PROCEDURAL"):
@@ -315,6 +320,7 @@ def slab_radiance(sun_elevation, forward, back, back_weight):
     bpy.ops.wm.read_homefile(use_empty=True)
     scene = bpy.context.scene
     readback.cycles_scene(scene, (32, 32), samples=128)
+    scene.cycles.volume_biased = True  # ray marching, as the quality presets set it
     scene.cycles.volume_bounces = 0
     scene.cycles.max_bounces = 0
     scenes.camera("ORTHO", location=(0.0, 0.0, 3000.0), ortho_scale=200.0)
