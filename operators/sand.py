@@ -139,9 +139,15 @@ class SANDSCAPE_OT_add_sand_material(SandscapeOperator, bpy.types.Operator):
             waves = {"Wind": tuple(context.scene.sandscape_atmosphere.wind),
                      **{name: getattr(self, setting) for setting, name in sand.RIPPLE_SETTINGS.items()},
                      "Displacement": self.ripple_displacement}
+        theirs = [slot.material.name for slot in obj.material_slots if slot.material is not None]
         material, added = sand.apply(obj, values, image, self.look, self.glints, waves, context.scene)
         look = f"{self.look.title()} sand, {self.glints.lower()} glints" + (", ripples" if waves else "")
-        self.report({"INFO"}, f"{'Added' if added else 'Updated'} '{material.name}' on '{obj.name}': {look}")
+        changed = ""
+        if added and theirs:
+            changed = (f"; changed: every face of '{obj.name}' uses it (your "
+                       f"{', '.join(repr(name) for name in theirs)} keep their slots)")
+        self.report({"INFO"}, f"{'Added' if added else 'Updated'} '{material.name}' on '{obj.name}': {look}"
+                    + changed)
         return {"FINISHED"}
 
 

@@ -252,3 +252,17 @@ def test_add_clouds_leaves_volume_sampling_and_names_the_steps_it_raises():
     assert result == {"FINISHED"} and not scene.cycles.volume_biased
     assert scene.cycles.volume_max_steps > 64
     assert f"changed: volume max steps 64 → {scene.cycles.volume_max_steps}" in line
+
+
+def test_add_sand_material_keeps_your_material_and_says_the_faces_moved():
+    ground()
+    plane = bpy.data.objects["Plane"]
+    bpy.context.view_layer.objects.active = plane
+    clay = bpy.data.materials.new("Clay")
+    plane.data.materials.append(clay)
+    result, reports = operators.run_execute("sandscape.add_sand_material")
+    line = info_line(reports)
+    assert result == {"FINISHED"} and plane.material_slots[0].material == clay
+    assert "changed: every face of 'Plane' uses it (your 'Clay' keep their slots)" in line
+    _, reports = operators.run_execute("sandscape.add_sand_material")  # an update moves nothing
+    assert "changed:" not in info_line(reports)
