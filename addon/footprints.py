@@ -23,7 +23,7 @@ from ..core import footprints as painter
 from ..core import paths
 from ..node_groups import helper as h
 from ..node_groups import print_markers
-from . import compat, evaluation, sand, units
+from . import compat, evaluation, rig_feet, sand, units
 from . import ownership as own
 from .footprint_patch import ensure_cut, ensure_patch, region_box, write_print_image  # noqa: F401
 from .footprint_terrain import (  # noqa: F401 (the footprints API)
@@ -190,12 +190,21 @@ def walk(scene, settings, progress=None):
         if not is_animated(walker):
             raise FootprintError(f"'{walker.name}' is not animated: give it keyframes, a Follow Path "
                                  "constraint or an animated parent, or use Add Walker")
-        positions = sample_walker(scene, walker, frames, progress)
-        try:
-            steps = paths.plan_steps(positions, frames, settings.stride, settings.stance)
-        except paths.PathError as error:
-            raise FootprintError(f"'{walker.name}': {error} ({start}..{end})") from error
-        motion = positions
+        armature = rig_feet.armature_of(walker)
+        steps = rig_feet.steps(scene, armature, terrain, frames) if armature is not None else None
+        if steps is not None:  # a rig: one print where each foot lands
+            if not len(steps["birth"]):
+                raise FootprintError(f"'{walker.name}': no foot touches '{terrain.name}' in {start}..{end} "
+                                     "(a foot lands when its sole comes within a tenth of its length "
+                                     "of the ground and nearly stops)")
+            motion = np.c_[steps["contact"], steps["birth"], steps["strike"]]
+        else:
+            positions = sample_walker(scene, walker, frames, progress)
+            try:
+                steps = paths.plan_steps(positions, frames, settings.stride, settings.stance)
+            except paths.PathError as error:
+                raise FootprintError(f"'{walker.name}': {error} ({start}..{end})") from error
+            motion = positions
     else:
         contacts, births, forward = sample_particles(scene, settings.particle_object, frames)
         if len(contacts) == 0:
@@ -233,6 +242,9 @@ def emit(scene, settings, progress=None, walked=None):
     forward = np.asarray(steps["forward"], dtype=np.float64)
     rng = np.random.default_rng(settings.seed)
     scale = 1.0 + settings.variation * rng.uniform(-1.0, 1.0, len(hits))
+    if "strike" in steps and len(steps["strike"]):  # a harder landing presses deeper
+        strike = np.asarray(steps["strike"], np.float64)
+        scale *= np.clip(np.sqrt(strike / max(float(np.median(strike)), 1e-6)), 0.8, 1.4)
     points = {"co": hits[landed] - origin, "birth_frame": np.asarray(steps["birth"])[landed],
               "heading": np.arctan2(forward[landed, 1], forward[landed, 0]),
               "side": np.asarray(steps["side"])[landed], "depth_scale": scale[landed],

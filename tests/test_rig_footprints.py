@@ -1,0 +1,128 @@
+"""A rigged walker leaves a print where each foot lands: an armature with the usual rigs' foot
+names, its feet keyed through a walk with a turn and a stop, built here. Reference: the plants
+the walk was keyed from, not the detector."""
+
+import math
+
+import bpy
+import numpy as np
+import pytest
+from mathutils import Matrix, Vector
+
+from devtools import operators, readback, scenes
+
+ANKLE, BALL, TIP = Vector((-0.06, 0.0, 0.08)), Vector((0.12, 0.0, 0.02)), Vector((0.2, 0.0, 0.0))
+STANCE = 0.12  # each foot this far from the middle
+# Each foot's plants: (x, y, heading, first frame, last frame); the last ones stand side by side.
+PLANTS = {
+    1: [(0.0, 0.0, 0.0, 1, 14), (1.3, 0.1, 0.15, 27, 40), (2.6, 0.45, 0.4, 53, 90)],
+    -1: [(0.65, 0.0, 0.0, 1, 27), (1.95, 0.25, 0.3, 40, 53), (2.55, 0.15, 0.4, 66, 90)],
+}
+NAMES = {
+    "metarig": {1: ("foot.L", "toe.L"), -1: ("foot.R", "toe.R")},
+    "mixamo": {1: ("mixamorig:LeftFoot", "mixamorig:LeftToeBase"),
+               -1: ("mixamorig:RightFoot", "mixamorig:RightToeBase")},
+}
+
+
+def foot_place(plants, frame):
+    """(x, y, heading, lift) of a foot at a frame: planted, or swinging in a 10 cm arc."""
+    for k, (x, y, heading, first, last) in enumerate(plants):
+        if frame <= last and (k == 0 or frame >= first):
+            if frame >= first:
+                return x, y, heading, 0.0
+        following = plants[k + 1] if k + 1 < len(plants) else None
+        if following is not None and last < frame < following[3]:
+            t = (frame - last) / (following[3] - last)
+            here = np.array([x, y, heading]) + (np.array(following[:3]) - [x, y, heading]) * t
+            return (*here, 0.1 * math.sin(math.pi * t))
+    x, y, heading, *_ = plants[-1] if frame > plants[-1][4] else plants[0]
+    return x, y, heading, 0.0
+
+
+def placement(side, x, y, heading, lift):
+    """The foot's rest-to-pose transform in armature space: turned about its ankle, moved."""
+    ankle = ANKLE + Vector((0.0, side * STANCE, 0.0))
+    return (Matrix.Translation(Vector((x, y, lift)) + ankle) @ Matrix.Rotation(heading, 4, "Z")
+            @ Matrix.Translation(-ankle))
+
+
+def walking_rig(convention):
+    armature = bpy.data.objects.new("Rig", bpy.data.armatures.new("Rig"))
+    bpy.context.scene.collection.objects.link(armature)
+    bpy.context.view_layer.objects.active = armature
+    bpy.ops.object.mode_set(mode="EDIT")
+    for side, (foot, toe) in NAMES[convention].items():
+        offset = Vector((0.0, side * STANCE, 0.0))
+        bone = armature.data.edit_bones.new(foot)
+        bone.head, bone.tail = ANKLE + offset, BALL + offset
+        tip = armature.data.edit_bones.new(toe)
+        tip.head, tip.tail, tip.parent, tip.use_connect = BALL + offset, TIP + offset, bone, True
+    bpy.ops.object.mode_set(mode="OBJECT")
+    for frame in range(1, 91):
+        for side, (foot, _) in NAMES[convention].items():
+            bone = armature.pose.bones[foot]
+            bone.rotation_mode = "QUATERNION"
+            bone.matrix = placement(side, *foot_place(PLANTS[side], frame)) @ bone.bone.matrix_local
+            bpy.context.view_layer.update()
+            bone.keyframe_insert("location", frame=frame)
+            bone.keyframe_insert("rotation_quaternion", frame=frame)
+    return armature
+
+
+def expected_prints():
+    """Each plant's sole middle (world x, y), heading and first frame."""
+    rows = []
+    for side, plants in PLANTS.items():
+        for x, y, heading, first, _ in plants:
+            middle = placement(side, x, y, heading, 0.0) @ ((ANKLE + TIP) / 2 + Vector((0, side * STANCE, 0)))
+            rows.append((middle.x, middle.y, heading, first, side))
+    return sorted(rows, key=lambda row: (row[3], -row[4]))
+
+
+@pytest.mark.parametrize("convention", sorted(NAMES))
+def test_a_print_where_each_foot_lands(convention):
+    terrain = scenes.height_field(8.0, 16, name="Their Sand")
+    terrain.location.x = 1.5
+    armature = walking_rig(convention)
+    scenes.footprint_settings(terrain, armature, (1, 90))
+    result, reports = operators.run_execute("sandscape.emit_footprints")
+    assert result == {"FINISHED"}, reports
+    points = next(o for o in bpy.data.objects if o.get("sandscape_object") == "footprints")
+    bpy.context.view_layer.update()  # the new points object's world matrix
+    co = np.array([v.co[:] for v in points.data.vertices]) + np.array(points.matrix_world.translation)
+    values = {name: np.array([d.value for d in points.data.attributes[name].data])
+              for name in ("birth_frame", "heading", "side")}
+    wanted = expected_prints()
+    assert len(co) == len(wanted) == 6
+    order = np.lexsort((-values["side"], values["birth_frame"]))
+    for index, (x, y, heading, first, side) in zip(order, wanted, strict=True):
+        assert math.hypot(co[index, 0] - x, co[index, 1] - y) < 0.03  # the issue's 3 cm
+        assert abs(math.remainder(values["heading"][index] - heading, math.tau)) < math.radians(3)
+        assert abs(values["birth_frame"][index] - first) <= 2 and values["side"][index] == side
+    assert np.abs(co[:, 2]).max() < 1e-3  # on the flat sand
+
+
+def test_a_rig_without_known_feet_walks_the_path():
+    terrain = scenes.height_field(8.0, 16, name="Their Sand")
+    armature = walking_rig("metarig")
+    for bone in armature.data.bones:
+        bone.name = bone.name.replace("foot", "paw")  # no foot by any rig's names: the path's stride
+    armature.keyframe_insert("location", frame=1)
+    armature.location.x = 3.0
+    armature.keyframe_insert("location", frame=90)
+    scenes.footprint_settings(terrain, armature, (1, 90), stride=0.5)
+    result, _ = operators.run_execute("sandscape.emit_footprints")
+    points = next(o for o in bpy.data.objects if o.get("sandscape_object") == "footprints")
+    assert result == {"FINISHED"} and len(points.data.vertices) == 7  # 3 m at 0.5 m strides
+
+
+def test_a_rig_whose_feet_never_land_is_refused_with_nothing_made():
+    terrain = scenes.height_field(8.0, 16, name="Their Sand")
+    armature = walking_rig("metarig")
+    armature.location.z = 0.5  # the whole walk half a metre above the sand
+    scenes.footprint_settings(terrain, armature, (1, 90))
+    before = readback.data_snapshot()
+    result, reports = operators.run_execute("sandscape.emit_footprints")
+    assert result == {"CANCELLED"} and "no foot touches 'Their Sand'" in reports[0][1]
+    assert readback.data_snapshot() == before
