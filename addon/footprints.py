@@ -23,7 +23,7 @@ from ..core import footprints as painter
 from ..core import paths
 from ..node_groups import helper as h
 from ..node_groups import print_markers
-from . import compat, evaluation, rig_feet, sand, units
+from . import compat, evaluation, rig_feet, sand, shot, units
 from . import ownership as own
 from .footprint_patch import ensure_cut, ensure_patch, region_box, write_print_image  # noqa: F401
 from .footprint_terrain import (  # noqa: F401 (the footprints API)
@@ -291,7 +291,8 @@ def paint(scene, settings, progress=None):
                              scene=scene)
     sand.attach_footprints(material, image, frame, {
         "Depth": settings.depth, "Rim": settings.rim, "Frame Start": float(start), "Frame End": float(end),
-        "Noise Amount": settings.noise_amount, "Noise Scale": 40.0 * units.metres_per_unit(scene)})
+        "Noise Amount": settings.noise_amount, "Noise Scale": 40.0 * units.metres_per_unit(scene),
+        "Refill Time": settings.refill_time * shot.frames_per_second(scene)})
     low, high = region_box(image)
     collection = terrain.users_collection[0] if terrain.users_collection else scene.collection
     patch = ensure_patch(scene, terrain, frame, low, high, collection, settings.dicing_pixel_size)

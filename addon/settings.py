@@ -66,7 +66,7 @@ class SandscapeFootprintSettings(bpy.types.PropertyGroup):
         "stride": (1e-4, 1e3), "stance": (0.0, 1e3), "foot_length": (1e-4, 1e2), "foot_width": (1e-4, 1e2),
         "depth": (0.0, 1e2), "rim": (0.0, 1e2), "rim_width": (0.0, 1e2), "variation": (0.0, 0.99),
         "noise_amount": (0.0, 1.0), "seed": (0, INT_MAX), "resolution": (1, 16384),
-        "dicing_pixel_size": (0.1, 1e4),
+        "dicing_pixel_size": (0.1, 1e4), "refill_time": (0.0, 1e7),
     }
 
     source: EnumProperty(
@@ -100,6 +100,9 @@ class SandscapeFootprintSettings(bpy.types.PropertyGroup):
                             description="Texels along the longer side of the print region")
     dicing_pixel_size: FloatProperty(name="Dicing", default=1.0, soft_min=0.25, soft_max=16.0,
                                      description="Adaptive subdivision edge length in pixels over the prints")
+    refill_time: FloatProperty(name="Refill Time", default=0.0, soft_min=0.0, soft_max=600.0,
+                               unit="TIME_ABSOLUTE", description="Seconds in which the wind fills a print to "
+                               "1/e (37 %) of its depth and rim; 0: prints stay as pressed")
 
 
 class SandscapeAtmosphereSettings(bpy.types.PropertyGroup):

@@ -263,17 +263,19 @@ def frame_span(start, end):
     return max(float(end) - float(start), 1.0)
 
 
-def revealed_height(image, depth, rim, frame, frame_range, margin=1e-3):
+def revealed_height(image, depth, rim, frame, frame_range, margin=1e-3, refill=0.0):
     """Twin of node group Sandscape Footprint Height at Noise Amount 0 (float32, like Cycles).
 
-    A texel shows once B * span + start < frame + margin.
+    A texel shows once B * span + start < frame + margin; with a refill time (frames) the wind
+    has filled it to exp(-age / refill) of its depth and rim.
     """
     f = np.float32
     start, end = frame_range
     rgb = image[..., :3].astype(f)
     birth = rgb[..., 2] * f(frame_span(start, end)) + f(start)
     born = (birth < f(frame) + f(margin)).astype(f)
-    return (rgb[..., 1] * f(rim) - rgb[..., 0] * f(depth)) * born
+    left = np.exp(-np.maximum(f(frame) - birth, f(0)) / f(refill)).astype(f) if refill > 0 else f(1)
+    return (rgb[..., 1] * f(rim) - rgb[..., 0] * f(depth)) * born * left
 
 
 def faces_in_region(face_centres, low, high):

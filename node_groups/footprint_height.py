@@ -3,14 +3,15 @@
 Seed 000, section 3.2: red records depressions, green raised rims, and a noise texture
 adds subtle variation. Blue holds each texel's birth frame, so one image reveals the prints
 as the walker passes: a texel counts once Frame has reached its birth frame. Frame is
-driven by the expression `frame`, which runs without Python auto-run.
+driven by the expression `frame`, which runs without Python auto-run. With a Refill Time the
+wind fills a print in: its depth and rim ease towards the surface as exp(−age / Refill Time).
 Twin: core.footprints.revealed_height (with Noise Amount 0).
 """
 
 from . import helper as h
 
 NAME = "Sandscape Footprint Height"
-VERSION = 2
+VERSION = 3
 TREE_TYPE = "ShaderNodeTree"
 DESCRIPTION = (
     "Footprint displacement from a Sandscape print map: Rim × G − Depth × R, revealed where "
@@ -36,6 +37,8 @@ INPUTS = {
                      0.15, 0.0, 1.0, "FACTOR"),
     "Noise Scale": ("NodeSocketFloat", "Scale of the variation noise (features per metre)",
                     40.0, 0.0, None, None),
+    "Refill Time": ("NodeSocketFloat", "Frames in which the wind fills a print to 1/e of its depth and "
+                    "rim (exp(−age / Refill Time)); 0: prints stay as pressed", 0.0, 0.0, None, None),
 }
 OUTPUTS = {
     "Height": ("NodeSocketFloat", "Height of the revealed prints in metres: Rim G - Depth R, varied"),
@@ -69,7 +72,20 @@ def build(tree):
     rim = h.math(tree, "MULTIPLY", channels.outputs["Green"], inputs["Rim"], (-400, 300), "Rim Height")
     depth = h.math(tree, "MULTIPLY", channels.outputs["Red"], inputs["Depth"], (-400, 150), "Depth")
     base = h.math(tree, "SUBTRACT", rim.outputs[0], depth.outputs[0], (-200, 250), "Rim − Depth")
-    revealed = h.math(tree, "MULTIPLY", base.outputs[0], born.outputs[0], (0, 150), "Revealed")
+    shown = h.math(tree, "MULTIPLY", base.outputs[0], born.outputs[0], (0, 150), "Revealed")
+    # Refill: exp(−age / T) of the print left, all of it with T = 0 (no wind refill).
+    age = h.math(tree, "SUBTRACT", inputs["Frame"], birth.outputs[0], label="Age (frames)")
+    age_floor = h.math(tree, "MAXIMUM", age.outputs[0], 0.0, label="Age ≥ 0")
+    time = h.math(tree, "MAXIMUM", inputs["Refill Time"], 1e-6, label="Refill Time > 0")
+    ratio = h.math(tree, "DIVIDE", age_floor.outputs[0], time.outputs[0], label="Age / Refill Time")
+    negative = h.math(tree, "MULTIPLY", ratio.outputs[0], -1.0, label="−Age / Refill Time")
+    left = h.math(tree, "EXPONENT", negative.outputs[0], label="Left")
+    refills = h.math(tree, "GREATER_THAN", inputs["Refill Time"], 0.0, label="Refills")
+    kept = h.add_node(tree, "ShaderNodeMix", label="Left (1 without refill)", data_type="FLOAT")
+    h.link(tree, refills.outputs[0], kept.inputs["Factor"])
+    h.socket(kept.inputs, "A").default_value = 1.0
+    h.link(tree, left.outputs[0], h.socket(kept.inputs, "B"))
+    revealed = h.math(tree, "MULTIPLY", shown.outputs[0], kept.outputs["Result"], label="Revealed × Left")
 
     noise = h.add_node(tree, "ShaderNodeTexNoise", (-400, -500), "Variation", noise_dimensions="3D",
                        inputs={"Detail": 2.0})
@@ -91,7 +107,8 @@ def build(tree):
     h.link(tree, displacement.outputs[0], group_out.inputs["Displacement"])
     h.frame(tree, "Channels", (channels,))
     h.frame(tree, "Reveal at the Birth Frame", (span, span_floor, birth, now, born))
-    h.frame(tree, "Rim − Depth", (rim, depth, base, revealed))
+    h.frame(tree, "Rim − Depth", (rim, depth, base, shown))
+    h.frame(tree, "Wind Refill", (age, age_floor, time, ratio, negative, left, refills, kept, revealed))
     h.frame(tree, "Variation", (noise, centred, variation, height))
     h.frame(tree, "Displacement", (displacement,))
     h.arrange(tree)

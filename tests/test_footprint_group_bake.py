@@ -50,23 +50,30 @@ def probe_material(sandscape, image, values):
     return material
 
 
-@pytest.mark.parametrize("depth, rim, frame, start, end", [
-    (0.03, 0.008, 100.0, 1.0, 250.0),
-    (0.03, 0.008, 1.0, 1.0, 250.0),
-    (0.5, 0.0, 37.0, 10.0, 60.0),
-    (0.01, 0.2, 61.0, 10.0, 60.0),
-    (0.03, 0.008, 5.0, 5.0, 5.0),  # a one-frame range
+@pytest.mark.parametrize("depth, rim, frame, start, end, refill", [
+    (0.03, 0.008, 100.0, 1.0, 250.0, 0.0),
+    (0.03, 0.008, 1.0, 1.0, 250.0, 0.0),
+    (0.5, 0.0, 37.0, 10.0, 60.0, 0.0),
+    (0.01, 0.2, 61.0, 10.0, 60.0, 0.0),
+    (0.03, 0.008, 5.0, 5.0, 5.0, 0.0),  # a one-frame range
+    (0.03, 0.008, 200.0, 1.0, 250.0, 40.0),  # the wind filling the prints in
 ])
-def test_height_matches_the_twin(sandscape, print_map, depth, rim, frame, start, end):
+def test_height_matches_the_twin(sandscape, print_map, depth, rim, frame, start, end, refill):
     image, pixels = print_map
     values = {"Depth": depth, "Rim": rim, "Frame": frame, "Frame Start": start, "Frame End": end,
-              "Noise Amount": 0.0}
+              "Noise Amount": 0.0, "Refill Time": refill}
     material = probe_material(sandscape, image, values)
     plane = readback.uv_plane()
     plane.data.materials.append(material)
     baked = (readback.bake_emit(plane, material, RES)[..., 0] - OFFSET) / GAIN
-    expected = twin.revealed_height(pixels, depth, rim, frame, (start, end))
+    expected = twin.revealed_height(pixels, depth, rim, frame, (start, end), refill=refill)
     assert np.abs(baked - expected).max() < TOLERANCE
+    if refill:  # the law itself, not the twin: what is left of a print is exp(-age / refill)
+        birth = pixels[..., 2] * (end - start) + start
+        pressed = pixels[..., 1] * rim - pixels[..., 0] * depth
+        law = np.where(birth < frame, pressed * np.exp(-(frame - birth) / refill), 0.0)
+        assert np.abs(baked - law).max() < 2 * TOLERANCE
+        assert np.abs(law).max() > 1e-3 and (np.abs(law) < 0.5 * np.abs(pressed)).mean() > 0.3
     shown = (expected != 0).mean()
     if start < frame < end:  # part of the map is born, part is not: the birth test is exercised
         assert 0.1 < shown < 0.9

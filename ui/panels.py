@@ -90,6 +90,7 @@ FOOTPRINT_SECTIONS = (
     ("Walk", ("stride", "stance")),
     ("Foot", ("foot_length", "foot_width", "depth", "rim", "rim_width", "variation", "noise_amount", "seed")),
     ("Map", ("resolution", "dicing_pixel_size")),
+    ("Wind", ("refill_time",)),
 )
 
 
