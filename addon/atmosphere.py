@@ -109,7 +109,9 @@ def ensure_sky(scene, elevation, azimuth, replace_theirs=False, follow=None):
 
 def _follow(sky, sun):
     """Drivers that point the sky's sun along the lamp's world +Z (matrix_world's third column)."""
-    for name, expression, axes in (("sun_elevation", "asin(z)", "z"),
+    # The axis over its length: a scaled lamp or parent lengthens it (asin of 2 failed the driver).
+    elevation = "asin(min(max(z / max(sqrt(x * x + y * y + z * z), 1e-12), -1), 1))"
+    for name, expression, axes in (("sun_elevation", elevation, "xyz"),
                                    ("sun_rotation", "atan2(x, y) + (2 * pi if x < 0 else 0)", "xy")):
         driver = sky.driver_add(name).driver
         driver.type = "SCRIPTED"

@@ -58,7 +58,7 @@ def curve_from_keys(scene, sun, fade):
     if suns is None:
         return None
     projection = view_projection(scene, camera) @ np.array(camera.matrix_world)  # the lens alone
-    return [_place(projection @ np.array(view.inverted()), np.array(lamp.col[2][:3]), fade, frame)
+    return [_place(projection @ np.linalg.inv(view), lamp[:3, 2], fade, frame)
             for frame, view, lamp in zip(frames, cameras, suns, strict=True)]
 
 

@@ -140,12 +140,17 @@ class SANDSCAPE_OT_add_sand_material(SandscapeOperator, bpy.types.Operator):
                      **{name: getattr(self, setting) for setting, name in sand.RIPPLE_SETTINGS.items()},
                      "Displacement": self.ripple_displacement}
         theirs = [slot.material.name for slot in obj.material_slots if slot.material is not None]
+        sharing = [o.name for o in bpy.data.objects if o.data == obj.data and o != obj]
         material, added = sand.apply(obj, values, image, self.look, self.glints, waves, context.scene)
         look = f"{self.look.title()} sand, {self.glints.lower()} glints" + (", ripples" if waves else "")
         changed = ""
         if added and theirs:
+            keep = "keep their slots" if len(theirs) > 1 else "keeps its slot"
             changed = (f"; changed: every face of '{obj.name}' uses it (your "
-                       f"{', '.join(repr(name) for name in theirs)} keep their slots)")
+                       f"{', '.join(repr(name) for name in theirs)} {keep})")
+        if added and sharing:
+            changed += (f"{'; changed:' if not changed else ';'} {', '.join(repr(n) for n in sharing)} "
+                        "shares the mesh and gets the sand too")
         self.report({"INFO"}, f"{'Added' if added else 'Updated'} '{material.name}' on '{obj.name}': {look}"
                     + changed)
         return {"FINISHED"}

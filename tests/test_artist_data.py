@@ -263,6 +263,21 @@ def test_add_sand_material_keeps_your_material_and_says_the_faces_moved():
     result, reports = operators.run_execute("sandscape.add_sand_material")
     line = info_line(reports)
     assert result == {"FINISHED"} and plane.material_slots[0].material == clay
-    assert "changed: every face of 'Plane' uses it (your 'Clay' keep their slots)" in line
+    assert "changed: every face of 'Plane' uses it (your 'Clay' keeps its slot)" in line
     _, reports = operators.run_execute("sandscape.add_sand_material")  # an update moves nothing
     assert "changed:" not in info_line(reports)
+
+
+def test_the_sky_follows_a_scaled_sun_and_a_squashed_parent():
+    """Found by an artist-eye check: a lamp scaled to 2 broke the driver (asin of more than 1) and
+    a parent scaled (1, 1, 0.5) tilted the sky's sun by 8 degrees."""
+    scene = ground()
+    sun = artists_sun()
+    sun.scale = (2.0, 2.0, 2.0)
+    sun.parent.scale = (1.0, 1.0, 0.5)
+    scene.sandscape_atmosphere.replace_world = True
+    operators.run_execute("sandscape.add_atmosphere")
+    scene.frame_set(1)
+    elevation, azimuth = direction(sun)
+    assert sky_sun_degrees(scene) == {(round(elevation, 3), round(azimuth, 3))}
+    assert all(d.is_valid for d in scene.world.node_tree.animation_data.drivers)
