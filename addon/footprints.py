@@ -191,7 +191,11 @@ def walk(scene, settings, progress=None):
             raise FootprintError(f"'{walker.name}' is not animated: give it keyframes, a Follow Path "
                                  "constraint or an animated parent, or use Add Walker")
         armature = rig_feet.armature_of(walker)
-        steps = rig_feet.steps(scene, armature, terrain, frames) if armature is not None else None
+        chosen = (settings.left_foot, settings.right_foot)
+        try:
+            steps = rig_feet.steps(scene, armature, terrain, frames, chosen) if armature is not None else None
+        except rig_feet.core_contacts.ContactError as error:
+            raise FootprintError(str(error)) from error
         if steps is not None:  # a rig: one print where each foot lands
             if not len(steps["birth"]):
                 raise FootprintError(f"'{walker.name}': no foot touches '{terrain.name}' in {start}..{end} "
@@ -205,6 +209,7 @@ def walk(scene, settings, progress=None):
             except paths.PathError as error:
                 raise FootprintError(f"'{walker.name}': {error} ({start}..{end})") from error
             motion = positions
+            steps["how"] = "along its path"
     else:
         contacts, births, forward = sample_particles(scene, settings.particle_object, frames)
         if len(contacts) == 0:
@@ -251,6 +256,7 @@ def emit(scene, settings, progress=None, walked=None):
               "surface_normal": normals[landed]}
     obj = write_points(scene, terrain, frame, points, collection)
     obj["emitted_from"] = walked["signature"]
+    obj["walked"] = steps.get("how", "")
     obj["emitted_source"] = walked["source"]
     obj["skipped"] = int((~landed).sum())
     return obj, int((~landed).sum())

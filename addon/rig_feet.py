@@ -30,10 +30,17 @@ def armature_of(obj):
     return next((child for child in obj.children_recursive if child.type == "ARMATURE"), None)
 
 
-def foot_bones(armature):
-    """(rig name, [(side, foot bone, toe bone or None)]) of the first convention the armature
-    follows, or (None, [])."""
+def foot_bones(armature, chosen=("", "")):
+    """(rig name, [(side, foot bone, toe bone or None)]): the artist's chosen (left, right) foot
+    bones when both are named (their first child is the toe), else those of the first convention
+    the armature follows, else (None, []). Raises ContactError for a chosen bone that is not there."""
     bones = armature.data.bones
+    if all(chosen):
+        missing = [name for name in chosen if name not in bones]
+        if missing:
+            raise core_contacts.ContactError(f"'{armature.name}' has no bone '{missing[0]}'")
+        return "chosen", [(side, name, bones[name].children[0].name if bones[name].children else None)
+                          for side, name in ((LEFT, chosen[0]), (RIGHT, chosen[1]))]
     for rig, (left, right, left_toe, right_toe) in CONVENTIONS:
         if left in bones and right in bones:
             return rig, [(LEFT, left, left_toe if left_toe in bones else None),
@@ -75,10 +82,10 @@ def foot_length(armature, foot, toe):
     return float((tip - bones[foot].head_local).length * max(armature.matrix_world.to_scale()))
 
 
-def steps(scene, armature, terrain, frames):
+def steps(scene, armature, terrain, frames, chosen=("", "")):
     """Prints where the feet land: the dict footprints.emit takes (contact, birth, forward, side,
-    strike), or None when the armature has no feet Sandscape knows by name."""
-    _, feet = foot_bones(armature)
+    strike, and "how": which bones), or None when the armature has no feet Sandscape knows."""
+    rig, feet = foot_bones(armature, chosen)
     if not feet:
         return None
     soles = sample_soles(scene, armature, feet, frames)
@@ -98,6 +105,8 @@ def steps(scene, armature, terrain, frames):
             found["side"].append(side)
             found["strike"].append(contact.strike)
     order = np.argsort(found["birth"], kind="stable")
-    return {key: np.asarray(values, np.float64 if key != "side" else np.int32)[order] if values
-            else np.zeros((0, 3) if key in ("contact", "forward") else 0)
-            for key, values in found.items()}
+    result = {key: np.asarray(values, np.float64 if key != "side" else np.int32)[order] if values
+              else np.zeros((0, 3) if key in ("contact", "forward") else 0)
+              for key, values in found.items()}
+    result["how"] = f"on its feet ({rig} bones '{feet[0][1]}', '{feet[1][1]}')"
+    return result

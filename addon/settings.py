@@ -74,7 +74,13 @@ class SandscapeFootprintSettings(bpy.types.PropertyGroup):
         items=(("WALKER", "Walker", "Steps along the path of an animated object"),
                ("PARTICLES", "Particles", "One print where each particle of a particle system is born")))
     walker: PointerProperty(name="Walker", type=bpy.types.Object,
-                            description="Any object whose world position is animated over the frame range")
+                            description="Any object whose world position is animated over the frame range; "
+                            "a rig leaves a print where each foot lands")
+    left_foot: StringProperty(name="Left Foot", default="",
+                              description="The rig's left foot bone (its first child is the toe); empty: "
+                              "found by Rigify, Mixamo or Auto-Rig Pro names")
+    right_foot: StringProperty(name="Right Foot", default="",
+                               description="The rig's right foot bone; empty: found by name")
     particle_object: PointerProperty(name="Particle Emitter", type=bpy.types.Object,
                                      description="Object whose first particle system marks the prints")
     terrain: PointerProperty(name="Terrain", type=bpy.types.Object, poll=_is_mesh,

@@ -77,7 +77,8 @@ class SANDSCAPE_OT_emit_footprints(_FootprintOperator, bpy.types.Operator):
     def summary(self, _scene, result):
         obj, skipped = result
         off = f", {skipped} off the terrain skipped" if skipped else ""
-        return f"Emitted {len(obj.data.vertices)} prints into '{obj.name}'{off}"
+        walked = f", the walker {obj['walked']}" if obj.get("walked") else ""
+        return f"Emitted {len(obj.data.vertices)} prints into '{obj.name}'{off}{walked}"
 
 
 class SANDSCAPE_OT_paint_footprints(_FootprintOperator, bpy.types.Operator):

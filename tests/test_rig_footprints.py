@@ -126,3 +126,19 @@ def test_a_rig_whose_feet_never_land_is_refused_with_nothing_made():
     result, reports = operators.run_execute("sandscape.emit_footprints")
     assert result == {"CANCELLED"} and "no foot touches 'Their Sand'" in reports[0][1]
     assert readback.data_snapshot() == before
+
+
+def test_the_artists_own_foot_bones_and_the_report_names_them():
+    terrain = scenes.height_field(8.0, 16, name="Their Sand")
+    armature = walking_rig("metarig")
+    for bone in armature.data.bones:
+        bone.name = bone.name.replace("foot", "paw").replace("toe", "claw")
+    settings = scenes.footprint_settings(terrain, armature, (1, 90))
+    settings.left_foot, settings.right_foot = "paw.L", "paw.R"
+    result, reports = operators.run_execute("sandscape.emit_footprints")
+    assert result == {"FINISHED"} and "on its feet (chosen bones 'paw.L', 'paw.R')" in reports[-1][1]
+    points = next(o for o in bpy.data.objects if o.get("sandscape_object") == "footprints")
+    assert len(points.data.vertices) == 6
+    settings.left_foot = "hoof.L"
+    result, reports = operators.run_execute("sandscape.emit_footprints")
+    assert result == {"CANCELLED"} and "'Rig' has no bone 'hoof.L'" in reports[0][1]

@@ -44,6 +44,11 @@ class RecordingLayout:
     def label(self, text="", **kwargs):
         self.calls.append(("label", text))
 
+    def prop_search(self, data, name, search_data, search_name, **kwargs):
+        assert name in data.bl_rna.properties.keys(), f"{data!r} has no property {name}"
+        assert search_name in search_data.bl_rna.properties.keys(), f"{search_data!r} has no {search_name}"
+        self.calls.append(("prop", data, name, None))
+
     def template_ID(self, data, name, **kwargs):
         assert name in data.bl_rna.properties.keys(), f"{data!r} has no property {name}"
         self.calls.append(("template_ID", data, name))
@@ -111,8 +116,13 @@ def test_footprints_panel_shows_every_setting_and_the_buttons():
     assert operators == ["sandscape.add_walker", "sandscape.emit_footprints", "sandscape.paint_footprints"]
     settings = bpy.context.scene.sandscape_footprints
     names = {p.identifier for p in settings.bl_rna.properties if p.identifier not in ("rna_type", "name")}
-    # Everything but the other source's object and the range the scene supplies.
-    assert names - shown == {"particle_object", "frame_start", "frame_end"}
+    # Everything but the other source's object, the range the scene supplies and a rig's feet.
+    assert names - shown == {"particle_object", "frame_start", "frame_end", "left_foot", "right_foot"}
+    settings.walker = bpy.data.objects.new("Rig", bpy.data.armatures.new("Rig"))
+    layout = RecordingLayout()
+    bpy.types.SANDSCAPE_PT_footprints.draw(types.SimpleNamespace(layout=layout), bpy.context)
+    assert {"left_foot", "right_foot"} <= {c[2] for c in layout.calls if c[0] == "prop"}
+    settings.walker = None
     settings.source, settings.use_scene_range = "PARTICLES", False
     layout = RecordingLayout()
     bpy.types.SANDSCAPE_PT_footprints.draw(types.SimpleNamespace(layout=layout), bpy.context)

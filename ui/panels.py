@@ -4,7 +4,7 @@ poll() allows."""
 
 import bpy
 
-from ..addon import atmosphere, dunes, sand
+from ..addon import atmosphere, dunes, rig_feet, sand
 
 
 class SandscapeTab:
@@ -104,6 +104,10 @@ class SANDSCAPE_PT_footprints(SandscapeSubPanel, bpy.types.Panel):
         layout.prop(settings, "source")
         if settings.source == "WALKER":
             layout.prop(settings, "walker")
+            rig = rig_feet.armature_of(settings.walker)
+            if rig is not None:  # a rig walks on its feet: which bones they are
+                layout.prop_search(settings, "left_foot", rig.data, "bones")
+                layout.prop_search(settings, "right_foot", rig.data, "bones")
             layout.operator("sandscape.add_walker", icon="ARMATURE_DATA")
         else:
             layout.prop(settings, "particle_object")
