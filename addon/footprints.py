@@ -47,7 +47,9 @@ ATTRIBUTES = {  # point attribute name -> (type, meaning)
     "side": ("INT", "+1 left foot, -1 right foot, 0 unknown (particle source)"),
     "depth_scale": ("FLOAT", "Multiplies the print's depth and rim (seeded variation)"),
     "surface_normal": ("FLOAT_VECTOR", "Terrain normal at the print, in the print frame (world axes)"),
+    "size_scale": ("FLOAT", "Multiplies the print's length and width (its walker's Foot Size)"),
 }
+DEFAULTS = {"depth_scale": 1, "size_scale": 1}  # of an attribute missing from older or edited points
 MARKER_RADIUS = 0.03  # metres: the viewport dots
 
 
@@ -121,7 +123,7 @@ def read_points(obj):
         width = 3 if kind == "FLOAT_VECTOR" else 1
         values = np.empty(count * width, np.int32 if kind == "INT" else np.float32)
         if attribute is None:
-            values[:] = {"birth_frame": 0, "heading": 0, "side": 0, "depth_scale": 1}.get(name, 0)
+            values[:] = DEFAULTS.get(name, 0)
             if name == "surface_normal":
                 values.reshape(-1, 3)[:] = (0, 0, 1)
         else:
@@ -174,6 +176,41 @@ def _digest(*arrays):
     return sha.hexdigest()
 
 
+STEP_KEYS = ("contact", "birth", "forward", "side", "depth")
+
+
+def _walker_steps(scene, settings, walker, chosen, frames, progress=None):
+    """(steps, motion) of one walker: where a rig's feet land, else its path's stride. steps
+    carries "depth", each print's multiplier from how hard it landed (1 along a path)."""
+    terrain = settings.terrain
+    start, end = frames[0], frames[-1]
+    if not is_animated(walker):
+        raise FootprintError(f"'{walker.name}' is not animated: give it keyframes, a Follow Path "
+                             "constraint or an animated parent, or use Add Walker")
+    armature = rig_feet.armature_of(walker)
+    try:
+        steps = rig_feet.steps(scene, armature, terrain, frames, chosen) if armature is not None else None
+    except rig_feet.core_contacts.ContactError as error:
+        raise FootprintError(str(error)) from error
+    if steps is not None:  # a rig: one print where each foot lands
+        if not len(steps["birth"]):
+            raise FootprintError(f"'{walker.name}': no foot touches '{terrain.name}' in {start}..{end} "
+                                 "(a foot lands when its sole comes within a tenth of its length "
+                                 "of the ground and nearly stops)")
+        # A harder landing presses deeper, against this walker's usual strike.
+        strike = np.asarray(steps["strike"], np.float64)
+        steps["depth"] = np.clip(np.sqrt(strike / max(float(np.median(strike)), 1e-6)), 0.8, 1.4)
+        return steps, np.c_[steps["contact"], steps["birth"], steps["strike"]]
+    positions = sample_walker(scene, walker, frames, progress)
+    try:
+        steps = paths.plan_steps(positions, frames, settings.stride, settings.stance)
+    except paths.PathError as error:
+        raise FootprintError(f"'{walker.name}': {error} ({start}..{end})") from error
+    steps["depth"] = np.ones(len(steps["birth"]))
+    steps["how"] = "along its path"
+    return steps, positions
+
+
 def walk(scene, settings, progress=None):
     """Sample the source over the frame range, and everything the prints depend on.
 
@@ -186,37 +223,27 @@ def walk(scene, settings, progress=None):
     start, end = frame_range(scene, settings)
     frames = frame_list(start, end)
     if settings.source == "WALKER":
-        walker = settings.walker
-        if not is_animated(walker):
-            raise FootprintError(f"'{walker.name}' is not animated: give it keyframes, a Follow Path "
-                                 "constraint or an animated parent, or use Add Walker")
-        armature = rig_feet.armature_of(walker)
-        chosen = (settings.left_foot, settings.right_foot)
-        try:
-            steps = rig_feet.steps(scene, armature, terrain, frames, chosen) if armature is not None else None
-        except rig_feet.core_contacts.ContactError as error:
-            raise FootprintError(str(error)) from error
-        if steps is not None:  # a rig: one print where each foot lands
-            if not len(steps["birth"]):
-                raise FootprintError(f"'{walker.name}': no foot touches '{terrain.name}' in {start}..{end} "
-                                     "(a foot lands when its sole comes within a tenth of its length "
-                                     "of the ground and nearly stops)")
-            motion = np.c_[steps["contact"], steps["birth"], steps["strike"]]
-        else:
-            positions = sample_walker(scene, walker, frames, progress)
-            try:
-                steps = paths.plan_steps(positions, frames, settings.stride, settings.stance)
-            except paths.PathError as error:
-                raise FootprintError(f"'{walker.name}': {error} ({start}..{end})") from error
-            motion = positions
-            steps["how"] = "along its path"
+        walkers = [(settings.walker, 1.0, 1.0, (settings.left_foot, settings.right_foot))]
+        walkers += [(entry.walker, entry.foot_scale, entry.depth_scale, (entry.left_foot, entry.right_foot))
+                    for entry in settings.more_walkers if entry.walker is not None]
+        found = [_walker_steps(scene, settings, walker, chosen, frames, progress)
+                 for walker, _, _, chosen in walkers]
+        steps = {key: np.concatenate([one[key] for one, _ in found]) for key in STEP_KEYS}
+        steps["size"] = np.concatenate([np.full(len(one["birth"]), size)
+                                        for (one, _), (_, size, _, _) in zip(found, walkers, strict=True)])
+        steps["depth"] = np.concatenate([one["depth"] * depth
+                                         for (one, _), (_, _, depth, _) in zip(found, walkers, strict=True)])
+        steps["how"] = "; ".join(f"'{walker.name}' {one['how']}"
+                                 for (one, _), (walker, *_) in zip(found, walkers, strict=True))
+        motion = np.concatenate([np.ravel(m) for _, m in found] + [np.ravel([w[1:3] for w in walkers])])
     else:
         contacts, births, forward = sample_particles(scene, settings.particle_object, frames)
         if len(contacts) == 0:
             raise FootprintError(f"'{settings.particle_object.name}' emits no particles in "
                                  f"{start}..{end}")
         steps = {"contact": contacts, "birth": births, "forward": forward,
-                 "side": np.zeros(len(contacts), np.int32)}
+                 "side": np.zeros(len(contacts), np.int32), "depth": np.ones(len(contacts)),
+                 "size": np.ones(len(contacts))}
         motion = np.concatenate([contacts, births[:, None]], axis=1)
     vertices, triangles = evaluated_terrain(scene, terrain)
     source = settings.walker if settings.source == "WALKER" else settings.particle_object
@@ -246,13 +273,11 @@ def emit(scene, settings, progress=None, walked=None):
     origin = np.array(frame_world(scene, frame).translation)
     forward = np.asarray(steps["forward"], dtype=np.float64)
     rng = np.random.default_rng(settings.seed)
-    scale = 1.0 + settings.variation * rng.uniform(-1.0, 1.0, len(hits))
-    if "strike" in steps and len(steps["strike"]):  # a harder landing presses deeper
-        strike = np.asarray(steps["strike"], np.float64)
-        scale *= np.clip(np.sqrt(strike / max(float(np.median(strike)), 1e-6)), 0.8, 1.4)
+    scale = (1.0 + settings.variation * rng.uniform(-1.0, 1.0, len(hits))) * np.asarray(steps["depth"])
     points = {"co": hits[landed] - origin, "birth_frame": np.asarray(steps["birth"])[landed],
               "heading": np.arctan2(forward[landed, 1], forward[landed, 0]),
               "side": np.asarray(steps["side"])[landed], "depth_scale": scale[landed],
+              "size_scale": np.asarray(steps["size"], np.float64)[landed],
               "surface_normal": normals[landed]}
     obj = write_points(scene, terrain, frame, points, collection)
     obj["emitted_from"] = walked["signature"]
@@ -280,9 +305,13 @@ def paint(scene, settings, progress=None):
         raise FootprintError(f"'{points_obj.name}' holds no prints to paint")
     sole = sole_from(settings)
     centres = points["co"][:, :2]
-    region = painter.fit_region(centres, sole.reach(), settings.resolution,
+    sizes = np.where(points["size_scale"] > 0, points["size_scale"], np.nan)  # 0: the print is skipped
+    reach = sole.reach() * float(np.nanmax(sizes, initial=1.0))
+    region = painter.fit_region(centres, reach, settings.resolution,
                                 margin=units.to_units(scene, 0.05) + sole.rim_width)
     forward, lateral = print_axes(points)
+    # Longer axes make a larger print: the painter reads offsets through their inverse.
+    forward, lateral = forward * sizes[:, None], lateral * sizes[:, None]
     start, end = frame_range(scene, settings)
     pixels = painter.paint(centres, forward, lateral, points["birth_frame"], points["depth_scale"], region,
                            sole, (start, end))

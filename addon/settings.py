@@ -16,6 +16,7 @@ import math
 import bpy
 from bpy.props import (
     BoolProperty,
+    CollectionProperty,
     EnumProperty,
     FloatProperty,
     FloatVectorProperty,
@@ -59,6 +60,24 @@ def _is_mesh(_self, obj):
     return obj.type == "MESH"
 
 
+class SandscapeWalkerEntry(bpy.types.PropertyGroup):
+    """One more walker on the same terrain, painted into the same height image."""
+
+    LIMITS = {"foot_scale": (0.01, 100.0), "depth_scale": (0.0, 100.0)}
+
+    walker: PointerProperty(name="Walker", type=bpy.types.Object,
+                            description="Another animated object or rig that walks the same sand")
+    foot_scale: FloatProperty(name="Foot Size", default=1.0, soft_min=0.2, soft_max=3.0, subtype="FACTOR",
+                              description="Its feet against the Foot Length and Width above: 0.6 for a "
+                              "child, 1.3 for a big boot")
+    depth_scale: FloatProperty(name="Depth", default=1.0, soft_min=0.0, soft_max=3.0, subtype="FACTOR",
+                               description="How deep its prints press against the Depth above (a heavier "
+                               "walker, a loaded pack: more)")
+    left_foot: StringProperty(name="Left Foot", default="",
+                              description="A rig's left foot bone; empty: found by name")
+    right_foot: StringProperty(name="Right Foot", default="", description="A rig's right foot bone")
+
+
 class SandscapeFootprintSettings(bpy.types.PropertyGroup):
     # Valid values, in what the artist reads: metres for lengths, else the property's own unit.
     LIMITS = {
@@ -81,6 +100,9 @@ class SandscapeFootprintSettings(bpy.types.PropertyGroup):
                               "found by Rigify, Mixamo or Auto-Rig Pro names")
     right_foot: StringProperty(name="Right Foot", default="",
                                description="The rig's right foot bone; empty: found by name")
+    more_walkers: CollectionProperty(type=SandscapeWalkerEntry, name="More Walkers",
+                                     description="Other walkers on the same terrain, each with its own "
+                                     "foot size and depth, painted into the same height image")
     particle_object: PointerProperty(name="Particle Emitter", type=bpy.types.Object,
                                      description="Object whose first particle system marks the prints")
     terrain: PointerProperty(name="Terrain", type=bpy.types.Object, poll=_is_mesh,
@@ -355,8 +377,8 @@ SandscapeDuneSettings = type("SandscapeDuneSettings", (bpy.types.PropertyGroup,)
                               "__doc__": "The dune field's settings (scene.sandscape_dunes)"})
 
 
-classes = (SandscapeFootprintSettings, SandscapeAtmosphereSettings, SandscapeCloudSettings,
-           SandscapePostSettings, SandscapeDuneSettings)
+classes = (SandscapeWalkerEntry, SandscapeFootprintSettings, SandscapeAtmosphereSettings,
+           SandscapeCloudSettings, SandscapePostSettings, SandscapeDuneSettings)
 
 
 def register():

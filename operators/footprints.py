@@ -6,7 +6,7 @@ They read the scene's Sandscape footprint settings (scene.sandscape_footprints).
 import bpy
 
 from ..addon import footprints, units
-from ..addon.settings import SandscapeFootprintSettings
+from ..addon.settings import SandscapeFootprintSettings, SandscapeWalkerEntry
 from .base import SandscapeOperator, value_problem
 
 
@@ -35,6 +35,12 @@ def settings_problem(scene, settings):
     start, end = footprints.frame_range(scene, settings)
     if end < start:
         return f"The frame range {start}..{end} is empty"
+    for index, entry in enumerate(settings.more_walkers):
+        problem = value_problem(entry, SandscapeWalkerEntry.LIMITS, scene)
+        if problem:
+            return f"More walkers, row {index + 1}: {problem}"
+        if entry.walker is not None and entry.walker == terrain:
+            return f"More walkers, row {index + 1}: the walker cannot be the terrain"
     if settings.foot_width > settings.foot_length:
         return (f"Foot width ({units.length_text(scene, settings.foot_width)}) must be at most the length "
                 f"({units.length_text(scene, settings.foot_length)})")
@@ -99,4 +105,41 @@ class SANDSCAPE_OT_paint_footprints(_FootprintOperator, bpy.types.Operator):
                 f"memory, {result['packed'] / 2**20:.2f} MiB packed)")
 
 
-classes = (SANDSCAPE_OT_emit_footprints, SANDSCAPE_OT_paint_footprints)
+class SANDSCAPE_OT_footprint_walker_add(SandscapeOperator, bpy.types.Operator):
+    """Add a row for another walker on the same terrain (the active object, if it is not the terrain or
+    a walker already): its prints go into the same height image"""
+
+    bl_idname = "sandscape.footprint_walker_add"
+    bl_label = "Add Another Walker"
+
+    def execute(self, context):
+        settings = context.scene.sandscape_footprints
+        entry = settings.more_walkers.add()
+        candidate = context.active_object
+        taken = {settings.terrain, settings.walker, *(e.walker for e in settings.more_walkers)}
+        if candidate is not None and candidate not in taken:
+            entry.walker = candidate
+        name = f"'{entry.walker.name}'" if entry.walker else "an empty row (pick the walker in it)"
+        self.report({"INFO"}, f"More walkers: {name}, row {len(settings.more_walkers)}")
+        return {"FINISHED"}
+
+
+class SANDSCAPE_OT_footprint_walker_remove(SandscapeOperator, bpy.types.Operator):
+    """Remove a row from the other walkers (its prints go at the next paint)"""
+
+    bl_idname = "sandscape.footprint_walker_remove"
+    bl_label = "Remove Walker"
+
+    index: bpy.props.IntProperty(name="Row", default=0, min=0)
+
+    def execute(self, context):
+        walkers = context.scene.sandscape_footprints.more_walkers
+        if self.index >= len(walkers):
+            return self.fail(f"There is no row {self.index + 1} among the other walkers")
+        walkers.remove(self.index)
+        self.report({"INFO"}, f"Removed row {self.index + 1} of the other walkers")
+        return {"FINISHED"}
+
+
+classes = (SANDSCAPE_OT_emit_footprints, SANDSCAPE_OT_paint_footprints, SANDSCAPE_OT_footprint_walker_add,
+           SANDSCAPE_OT_footprint_walker_remove)

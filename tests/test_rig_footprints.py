@@ -142,3 +142,38 @@ def test_the_artists_own_foot_bones_and_the_report_names_them():
     settings.left_foot = "hoof.L"
     result, reports = operators.run_execute("sandscape.emit_footprints")
     assert result == {"CANCELLED"} and "'Rig' has no bone 'hoof.L'" in reports[0][1]
+
+
+def test_two_walkers_with_their_own_feet_go_into_one_image():
+    """A rig and a keyed empty on the same sand; the empty's feet 1.5 times the size and its prints
+    half as deep. Reference: the painted area of a print grows with the square of its size."""
+    terrain = scenes.height_field(8.0, 16, name="Their Sand")
+    armature = walking_rig("metarig")
+    settings = scenes.footprint_settings(terrain, armature, (1, 90), stride=0.7, resolution=1024)
+    hiker = scenes.keyframed_walker(lambda f: (-1.0 + 3.0 * (f - 1) / 89, -2.0, 0.0), range(1, 91),
+                                    name="Hiker")
+    bpy.context.view_layer.objects.active = hiker
+    assert bpy.ops.sandscape.footprint_walker_add() == {"FINISHED"}
+    entry = settings.more_walkers[0]
+    assert entry.walker == hiker
+    entry.foot_scale, entry.depth_scale = 1.5, 0.5
+    result, reports = operators.run_execute("sandscape.paint_footprints")
+    assert result == {"FINISHED"}, reports
+    points = next(o for o in bpy.data.objects if o.get("sandscape_object") == "footprints")
+    sizes = np.array([d.value for d in points.data.attributes["size_scale"].data])
+    depths = np.array([d.value for d in points.data.attributes["depth_scale"].data])
+    assert (sizes == 1.0).sum() == 6 and (sizes == 1.5).sum() == 5  # 3 m of path at 0.7 m strides
+    assert np.all(depths[sizes == 1.5] < 0.6) and np.all(depths[sizes == 1.0] > 0.7)
+    image = next(i for i in bpy.data.images if i.get("sandscape_image") == "print_map")
+    pixels = np.empty(image.size[0] * image.size[1] * 4, np.float32)
+    image.pixels.foreach_get(pixels)
+    pressed = pixels.reshape(image.size[1], image.size[0], 4)[..., 0] > 1e-3
+    low, size = np.array(image["region_min"]), np.array(image["region_size"])
+    rows = low[1] + (np.arange(image.size[1]) + 0.5) / image.size[1] * size[1]
+    area = image["texel"] ** 2
+    hiker_area = pressed[rows < -1.0].sum() * area / 5
+    rig_area = pressed[rows > -0.5].sum() * area / 6
+    print(f"pressed area per print: hiker {hiker_area * 1e4:.0f} cm², rig {rig_area * 1e4:.0f} cm²")
+    assert hiker_area / rig_area == pytest.approx(1.5 ** 2, rel=0.1)
+    assert settings.more_walkers and bpy.ops.sandscape.footprint_walker_remove(index=0) == {"FINISHED"}
+    assert not settings.more_walkers

@@ -113,16 +113,23 @@ def test_footprints_panel_shows_every_setting_and_the_buttons():
     bpy.types.SANDSCAPE_PT_footprints.draw(types.SimpleNamespace(layout=layout), bpy.context)
     shown = {call[2] for call in layout.calls if call[0] == "prop"}
     operators = [call[1] for call in layout.calls if call[0] == "operator"]
-    assert operators == ["sandscape.add_walker", "sandscape.emit_footprints", "sandscape.paint_footprints"]
+    assert operators == ["sandscape.add_walker", "sandscape.footprint_walker_add",
+                         "sandscape.emit_footprints", "sandscape.paint_footprints"]
     settings = bpy.context.scene.sandscape_footprints
     names = {p.identifier for p in settings.bl_rna.properties if p.identifier not in ("rna_type", "name")}
     # Everything but the other source's object, the range the scene supplies and a rig's feet.
-    assert names - shown == {"particle_object", "frame_start", "frame_end", "left_foot", "right_foot"}
+    assert names - shown == {"particle_object", "frame_start", "frame_end", "left_foot", "right_foot",
+                             "more_walkers"}  # a list, drawn row by row
     settings.walker = bpy.data.objects.new("Rig", bpy.data.armatures.new("Rig"))
     layout = RecordingLayout()
     bpy.types.SANDSCAPE_PT_footprints.draw(types.SimpleNamespace(layout=layout), bpy.context)
     assert {"left_foot", "right_foot"} <= {c[2] for c in layout.calls if c[0] == "prop"}
     settings.walker = None
+    settings.more_walkers.add()
+    layout = RecordingLayout()
+    bpy.types.SANDSCAPE_PT_footprints.draw(types.SimpleNamespace(layout=layout), bpy.context)
+    assert {"foot_scale", "depth_scale"} <= {c[2] for c in layout.calls if c[0] == "prop"}
+    assert "sandscape.footprint_walker_remove" in [c[1] for c in layout.calls if c[0] == "operator"]
     settings.source, settings.use_scene_range = "PARTICLES", False
     layout = RecordingLayout()
     bpy.types.SANDSCAPE_PT_footprints.draw(types.SimpleNamespace(layout=layout), bpy.context)

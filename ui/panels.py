@@ -109,6 +109,17 @@ class SANDSCAPE_PT_footprints(SandscapeSubPanel, bpy.types.Panel):
                 layout.prop_search(settings, "left_foot", rig.data, "bones")
                 layout.prop_search(settings, "right_foot", rig.data, "bones")
             layout.operator("sandscape.add_walker", icon="ARMATURE_DATA")
+            for index, entry in enumerate(settings.more_walkers):  # more walkers on the same sand
+                row = layout.row()
+                row.prop(entry, "walker", text="")
+                row.prop(entry, "foot_scale")
+                row.prop(entry, "depth_scale")
+                row.operator("sandscape.footprint_walker_remove", text="", icon="X").index = index
+                rig = rig_feet.armature_of(entry.walker)
+                if rig is not None:
+                    layout.prop_search(entry, "left_foot", rig.data, "bones")
+                    layout.prop_search(entry, "right_foot", rig.data, "bones")
+            layout.operator("sandscape.footprint_walker_add", icon="ADD")
         else:
             layout.prop(settings, "particle_object")
         layout.prop(settings, "terrain")
