@@ -17,6 +17,8 @@ PLANTS = {
 }
 NAMES = {
     "metarig": {1: ("foot.L", "toe.L"), -1: ("foot.R", "toe.R")},
+    "rigify": {1: ("DEF-foot.L", "DEF-toe.L"), -1: ("DEF-foot.R", "DEF-toe.R")},
+    "auto-rig pro": {1: ("foot.l", "toes_01.l"), -1: ("foot.r", "toes_01.r")},
     "mixamo": {1: ("mixamorig:LeftFoot", "mixamorig:LeftToeBase"),
                -1: ("mixamorig:RightFoot", "mixamorig:RightToeBase")},
 }
