@@ -13,11 +13,9 @@ Run: .venv/bin/python bench/god_rays.py [--no-append]
 import argparse
 import importlib.util
 import pathlib
-import statistics
 import subprocess
 import sys
 import tempfile
-import time
 
 import numpy as np
 
@@ -55,23 +53,11 @@ def old_builder(sandscape):
     return module
 
 
-def timed(action):
-    seconds, out = [], None
-    for _ in range(REPEATS):
-        started = time.perf_counter()
-        out = action()
-        seconds.append(time.perf_counter() - started)
-    return statistics.median(seconds), out
-
-
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--no-append", action="store_true")
     args = parser.parse_args(argv)
-    root = session.isolate()
-    import bpy  # noqa: F401 (after isolate, before the extension)
-
-    sandscape = session.install_dev_extension(root)
+    sandscape = session.start()
     from core import post
     from devtools import readback
 
@@ -84,7 +70,7 @@ def main(argv=None):
     readback.composite_group(helper.ensure_group(new), {"Occlusion": occlusion}, "Rays", SIZE)  # a camera
     scene = readback.cycles_scene(resolution=SIZE)
     scene.render.use_compositing = False
-    base, _ = timed(lambda: readback.render(scene))
+    base, _ = results.median_seconds(lambda: readback.render(scene), REPEATS)
     rows = []
     for label, group, samples in (("one group, Samples 32", helper.ensure_group(new), 32),
                                   ("one group, Samples 1024", helper.ensure_group(new), 1024),
@@ -94,7 +80,8 @@ def main(argv=None):
         if "Samples" in group.interface.items_tree:
             values["Samples"] = float(samples)
         values["Weight"], values["Decay"] = 0.1 * 32 / samples, 0.97 ** (32 / samples)  # one look
-        seconds, image = timed(lambda g=group, v=values: readback.composite_group(g, v, "Rays", SIZE))
+        seconds, image = results.median_seconds(
+            lambda g=group, v=values: readback.composite_group(g, v, "Rays", SIZE), REPEATS)
         error = np.abs(image[..., :3] - reference).max() / reference.max()
         rows.append((label, len(group.nodes), seconds - base, error))
         print(f"god rays: {label}: {len(group.nodes)} nodes, {seconds - base:.2f} s, error {error:.4f}",

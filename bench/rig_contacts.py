@@ -10,10 +10,9 @@ Run: .venv/bin/python bench/rig_contacts.py [--no-append]
 """
 
 import argparse
+import functools
 import pathlib
-import statistics
 import sys
-import time
 
 import numpy as np
 
@@ -30,10 +29,9 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--no-append", action="store_true")
     args = parser.parse_args(argv)
-    root = session.isolate()
+    sandscape = session.start()
     import bpy
 
-    sandscape = session.install_dev_extension(root)
     from devtools import rigs, scenes
 
     rows = []
@@ -43,12 +41,9 @@ def main(argv=None):
         armature = rigs.walking_rig("metarig", frames=90, extra_bones=body)
         scene = bpy.context.scene
         frames = np.arange(1, FRAMES + 1)
-        seconds, found = [], None
-        for _ in range(REPEATS):
-            started = time.perf_counter()
-            found = sandscape.addon.rig_feet.steps(scene, armature, terrain, frames)
-            seconds.append(time.perf_counter() - started)
-        rows.append((len(armature.data.bones), statistics.median(seconds), len(found["birth"])))
+        steps = functools.partial(sandscape.addon.rig_feet.steps, scene, armature, terrain, frames)
+        seconds, found = results.median_seconds(steps, REPEATS)
+        rows.append((len(armature.data.bones), seconds, len(found["birth"])))
         print(f"rig contacts: {rows[-1][0]} bones, {rows[-1][1]:.3f} s, {rows[-1][2]} contacts", flush=True)
     lines = [results.heading("Rig contacts"),
              f"{results.machine()}. devtools/rigs.walking_rig (metarig names) with a keyed chain of body "

@@ -11,10 +11,8 @@ Run: .venv/bin/python bench/save_cost.py [--frames N] [--no-append]
 
 import argparse
 import pathlib
-import statistics
 import sys
 import tempfile
-import time
 
 REPO = pathlib.Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(REPO))
@@ -25,12 +23,7 @@ REPEATS = 5
 
 
 def timed(action):
-    seconds = []
-    for _ in range(REPEATS):
-        started = time.perf_counter()
-        action()
-        seconds.append(time.perf_counter() - started)
-    return statistics.median(seconds)
+    return results.median_seconds(action, REPEATS)[0]
 
 
 def main(argv=None):
@@ -38,10 +31,9 @@ def main(argv=None):
     parser.add_argument("--frames", type=int, default=1000)
     parser.add_argument("--no-append", action="store_true")
     args = parser.parse_args(argv)
-    root = session.isolate()
+    sandscape = session.start()
     import bpy
 
-    sandscape = session.install_dev_extension(root)
     from devtools import scenes
 
     handlers = sandscape.addon.post_handlers

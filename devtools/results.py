@@ -71,3 +71,16 @@ def pyplot(without):
         print(f"{without}: matplotlib is missing (pip install -r requirements-bench.txt)")
         return None
     return plt
+
+
+def median_seconds(action, repeats):
+    """(median wall time of `repeats` runs of action(), its last result)."""
+    import statistics
+    import time
+
+    seconds, out = [], None
+    for _ in range(repeats):
+        started = time.perf_counter()
+        out = action()
+        seconds.append(time.perf_counter() - started)
+    return statistics.median(seconds), out

@@ -56,3 +56,11 @@ def reset():
 
     bpy.ops.wm.read_homefile(use_empty=True)
     bpy.context.preferences.use_preferences_save = False
+
+
+def start():
+    """A bench's session: isolated, bpy imported, the working tree installed; the package."""
+    root = isolate()
+    import bpy  # noqa: F401 (after isolate, before the extension)
+
+    return install_dev_extension(root)
