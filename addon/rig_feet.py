@@ -89,7 +89,9 @@ def steps(scene, armature, terrain, frames, chosen=("", "")):
     if not feet:
         return None
     soles = sample_soles(scene, armature, feet, frames)
-    top = float(max((terrain.matrix_world @ v.co).z for v in terrain.data.vertices)) + 1.0
+    local, _ = evaluation.mesh_triangles(terrain.data)  # numpy, not a Python loop over vertices
+    world = np.array(terrain.matrix_world)
+    top = float((local @ world[2, :3] + world[2, 3]).max()) + 1.0
     fps = shot.frames_per_second(scene)
     found = {"contact": [], "birth": [], "forward": [], "side": [], "strike": []}
     for side, foot, toe in feet:
