@@ -48,8 +48,11 @@ ATTRIBUTES = {  # point attribute name -> (type, meaning)
     "depth_scale": ("FLOAT", "Multiplies the print's depth and rim (seeded variation)"),
     "surface_normal": ("FLOAT_VECTOR", "Terrain normal at the print, in the print frame (world axes)"),
     "size_scale": ("FLOAT", "Multiplies the print's length and width (its walker's Foot Size)"),
+    "length_scale": ("FLOAT", "Multiplies the print's length once more (a run's print is longer)"),
+    "toe_bias": ("FLOAT", "Depth from x (1 - bias) at the heel to x (1 + bias) at the toe (a run)"),
 }
-DEFAULTS = {"depth_scale": 1, "size_scale": 1}  # of an attribute missing from older or edited points
+# Of an attribute missing from older or edited points:
+DEFAULTS = {"depth_scale": 1, "size_scale": 1, "length_scale": 1}
 MARKER_RADIUS = 0.03  # metres: the viewport dots
 
 
@@ -176,12 +179,14 @@ def _digest(*arrays):
     return sha.hexdigest()
 
 
-STEP_KEYS = ("contact", "birth", "forward", "side", "depth")
+STEP_KEYS = ("contact", "birth", "forward", "side", "depth", "stretch", "toe")
 
 
-def _walker_steps(scene, settings, walker, chosen, frames, progress=None):
+def _walker_steps(scene, settings, walker, chosen, frames, progress=None, stride_scale=1.0):
     """(steps, motion) of one walker: where a rig's feet land, else its path's stride. steps
-    carries "depth", each print's multiplier from how hard it landed (1 along a path)."""
+    carries each print's "depth" multiplier from how hard it landed, and "stretch" and "toe" (its
+    length scale and toe bias) from how long the foot stayed down: a run's print is longer and
+    deepest at the toe (a path's prints: 1, 1, 0)."""
     terrain = settings.terrain
     start, end = frames[0], frames[-1]
     if not is_animated(walker):
@@ -200,13 +205,16 @@ def _walker_steps(scene, settings, walker, chosen, frames, progress=None):
         # A harder landing presses deeper, against this walker's usual strike.
         strike = np.asarray(steps["strike"], np.float64)
         steps["depth"] = np.clip(np.sqrt(strike / max(float(np.median(strike)), 1e-6)), 0.8, 1.4)
+        steps["stretch"], steps["toe"] = rig_feet.core_contacts.gait_shape(np.asarray(steps["seconds"]))
         return steps, np.c_[steps["contact"], steps["birth"], steps["strike"]]
     positions = sample_walker(scene, walker, frames, progress)
     try:
-        steps = paths.plan_steps(positions, frames, settings.stride, settings.stance)
+        steps = paths.plan_steps(positions, frames, settings.stride * stride_scale,
+                                 settings.stance * stride_scale)
     except paths.PathError as error:
         raise FootprintError(f"'{walker.name}': {error} ({start}..{end})") from error
-    steps["depth"] = np.ones(len(steps["birth"]))
+    steps["depth"], steps["stretch"] = np.ones(len(steps["birth"])), np.ones(len(steps["birth"]))
+    steps["toe"] = np.zeros(len(steps["birth"]))
     steps["how"] = "along its path"
     return steps, positions
 
@@ -223,19 +231,20 @@ def walk(scene, settings, progress=None):
     start, end = frame_range(scene, settings)
     frames = frame_list(start, end)
     if settings.source == "WALKER":
-        walkers = [(settings.walker, 1.0, 1.0, (settings.left_foot, settings.right_foot))]
-        walkers += [(entry.walker, entry.foot_scale, entry.depth_scale, (entry.left_foot, entry.right_foot))
-                    for entry in settings.more_walkers if entry.walker is not None]
-        found = [_walker_steps(scene, settings, walker, chosen, frames, progress)
-                 for walker, _, _, chosen in walkers]
+        walkers = [(settings.walker, 1.0, 1.0, (settings.left_foot, settings.right_foot), 1.0)]
+        walkers += [(entry.walker, entry.foot_scale, entry.depth_scale, (entry.left_foot, entry.right_foot),
+                     entry.stride_scale) for entry in settings.more_walkers if entry.walker is not None]
+        found = [_walker_steps(scene, settings, walker, chosen, frames, progress, stride)
+                 for walker, _, _, chosen, stride in walkers]
         steps = {key: np.concatenate([one[key] for one, _ in found]) for key in STEP_KEYS}
         steps["size"] = np.concatenate([np.full(len(one["birth"]), size)
-                                        for (one, _), (_, size, _, _) in zip(found, walkers, strict=True)])
+                                        for (one, _), (_, size, *_) in zip(found, walkers, strict=True)])
         steps["depth"] = np.concatenate([one["depth"] * depth
-                                         for (one, _), (_, _, depth, _) in zip(found, walkers, strict=True)])
+                                         for (one, _), (_, _, depth, *_) in zip(found, walkers, strict=True)])
         steps["how"] = "; ".join(f"'{walker.name}' {one['how']}"
                                  for (one, _), (walker, *_) in zip(found, walkers, strict=True))
-        motion = np.concatenate([np.ravel(m) for _, m in found] + [np.ravel([w[1:3] for w in walkers])])
+        motion = np.concatenate([np.ravel(m) for _, m in found]
+                                + [np.ravel([(w[1], w[2], w[4]) for w in walkers])])
     else:
         contacts, births, forward = sample_particles(scene, settings.particle_object, frames)
         if len(contacts) == 0:
@@ -243,7 +252,8 @@ def walk(scene, settings, progress=None):
                                  f"{start}..{end}")
         steps = {"contact": contacts, "birth": births, "forward": forward,
                  "side": np.zeros(len(contacts), np.int32), "depth": np.ones(len(contacts)),
-                 "size": np.ones(len(contacts))}
+                 "size": np.ones(len(contacts)), "stretch": np.ones(len(contacts)),
+                 "toe": np.zeros(len(contacts))}
         motion = np.concatenate([contacts, births[:, None]], axis=1)
     vertices, triangles = evaluated_terrain(scene, terrain)
     source = settings.walker if settings.source == "WALKER" else settings.particle_object
@@ -278,6 +288,8 @@ def emit(scene, settings, progress=None, walked=None):
               "heading": np.arctan2(forward[landed, 1], forward[landed, 0]),
               "side": np.asarray(steps["side"])[landed], "depth_scale": scale[landed],
               "size_scale": np.asarray(steps["size"], np.float64)[landed],
+              "length_scale": np.asarray(steps["stretch"], np.float64)[landed],
+              "toe_bias": np.asarray(steps["toe"], np.float64)[landed],
               "surface_normal": normals[landed]}
     obj = write_points(scene, terrain, frame, points, collection)
     obj["emitted_from"] = walked["signature"]
@@ -306,15 +318,16 @@ def paint(scene, settings, progress=None):
     sole = sole_from(settings)
     centres = points["co"][:, :2]
     sizes = np.where(points["size_scale"] > 0, points["size_scale"], np.nan)  # 0: the print is skipped
-    reach = sole.reach() * float(np.nanmax(sizes, initial=1.0))
+    lengths = np.where(points["length_scale"] > 0, points["length_scale"], np.nan)
+    reach = sole.reach() * float(np.nanmax(sizes * np.maximum(lengths, 1.0), initial=1.0))
     region = painter.fit_region(centres, reach, settings.resolution,
                                 margin=units.to_units(scene, 0.05) + sole.rim_width)
     forward, lateral = print_axes(points)
     # Longer axes make a larger print: the painter reads offsets through their inverse.
-    forward, lateral = forward * sizes[:, None], lateral * sizes[:, None]
+    forward, lateral = forward * (sizes * lengths)[:, None], lateral * sizes[:, None]
     start, end = frame_range(scene, settings)
     pixels = painter.paint(centres, forward, lateral, points["birth_frame"], points["depth_scale"], region,
-                           sole, (start, end))
+                           sole, (start, end), toe_bias=points["toe_bias"])
     if progress:
         progress(0.9)
     image = write_print_image(scene, terrain, pixels, region, (start, end))
@@ -327,7 +340,8 @@ def paint(scene, settings, progress=None):
     sand.attach_footprints(material, image, frame, {
         "Depth": settings.depth, "Rim": settings.rim, "Frame Start": float(start), "Frame End": float(end),
         "Noise Amount": settings.noise_amount, "Noise Scale": 40.0 * units.metres_per_unit(scene),
-        "Refill Time": settings.refill_time * shot.frames_per_second(scene)})
+        "Refill Time": settings.refill_time * shot.frames_per_second(scene),
+        "Wind": tuple(scene.sandscape_atmosphere.wind)})
     low, high = region_box(image)
     collection = terrain.users_collection[0] if terrain.users_collection else scene.collection
     patch = ensure_patch(scene, terrain, frame, low, high, collection, settings.dicing_pixel_size)

@@ -84,7 +84,8 @@ def foot_length(armature, foot, toe):
 
 def steps(scene, armature, terrain, frames, chosen=("", "")):
     """Prints where the feet land: the dict footprints.emit takes (contact, birth, forward, side,
-    strike, and "how": which bones), or None when the armature has no feet Sandscape knows."""
+    strike, seconds planted, and "how": which bones), or None when the armature has no feet
+    Sandscape knows."""
     rig, feet = foot_bones(armature, chosen)
     if not feet:
         return None
@@ -93,7 +94,7 @@ def steps(scene, armature, terrain, frames, chosen=("", "")):
     world = np.array(terrain.matrix_world)
     top = float((local @ world[2, :3] + world[2, 3]).max()) + 1.0
     fps = shot.frames_per_second(scene)
-    found = {"contact": [], "birth": [], "forward": [], "side": [], "strike": []}
+    found = {"contact": [], "birth": [], "forward": [], "side": [], "strike": [], "seconds": []}
     for side, foot, toe in feet:
         heel, front = soles[foot]
         lowest = np.where((heel[:, 2] <= front[:, 2])[:, None], heel, front)
@@ -106,6 +107,7 @@ def steps(scene, armature, terrain, frames, chosen=("", "")):
             found["forward"].append((np.cos(contact.heading), np.sin(contact.heading), 0.0))
             found["side"].append(side)
             found["strike"].append(contact.strike)
+            found["seconds"].append(contact.seconds)
     order = np.argsort(found["birth"], kind="stable")
     result = {key: np.asarray(values, np.float64 if key != "side" else np.int32)[order] if values
               else np.zeros((0, 3) if key in ("contact", "forward") else 0)

@@ -230,13 +230,18 @@ def default_ripples(scene):
 
 
 def set_wind(scene, wind):
-    """The wind of every sand material in the scene's ripples (Add Atmosphere changed it)."""
+    """The wind of every sand material in the scene: its ripples' and the wind that fills its prints
+    (Add Atmosphere changed it)."""
     done = set()
     for obj in scene.objects:
         material = find_sand_material(obj)
         wave = ripple_node(material)
         if wave is not None and material.name not in done:
             wave.inputs["Wind"].default_value = tuple(wind)
+            done.add(material.name)
+        prints = footprint_node(material) if material is not None else None
+        if prints is not None and "Wind" in prints.inputs:  # the wind that fills old prints
+            prints.inputs["Wind"].default_value = tuple(wind)
             done.add(material.name)
     return len(done)
 

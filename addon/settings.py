@@ -63,7 +63,7 @@ def _is_mesh(_self, obj):
 class SandscapeWalkerEntry(bpy.types.PropertyGroup):
     """One more walker on the same terrain, painted into the same height image."""
 
-    LIMITS = {"foot_scale": (0.01, 100.0), "depth_scale": (0.0, 100.0)}
+    LIMITS = {"foot_scale": (0.01, 100.0), "depth_scale": (0.0, 100.0), "stride_scale": (0.01, 100.0)}
 
     walker: PointerProperty(name="Walker", type=bpy.types.Object,
                             description="Another animated object or rig that walks the same sand")
@@ -73,6 +73,9 @@ class SandscapeWalkerEntry(bpy.types.PropertyGroup):
     depth_scale: FloatProperty(name="Depth", default=1.0, soft_min=0.0, soft_max=3.0, subtype="FACTOR",
                                description="How deep its prints press against the Depth above (a heavier "
                                "walker, a loaded pack: more)")
+    stride_scale: FloatProperty(name="Stride", default=1.0, soft_min=0.2, soft_max=3.0, subtype="FACTOR",
+                                description="Its stride and stance against the Stride and Stance above, "
+                                "for a walker along a path (a child: about 0.6); a rig's feet set their own")
     left_foot: StringProperty(name="Left Foot", default="",
                               description="A rig's left foot bone; empty: found by name")
     right_foot: StringProperty(name="Right Foot", default="", description="A rig's right foot bone")

@@ -6,17 +6,27 @@ and stays planted until it rises or moves clearly more (hysteresis), so a contac
 by a frame of jitter. Each contact gives one print: where the sole stood (the mean over the
 planted frames), its heading (heel to toe), its first frame (the heel strike), how long it
 lasted and how hard it struck (the sole's downward speed as it landed).
+
+A run leaves another print than a walk: the foot is down a quarter of a second instead of over
+half a second, lands moving and slides a little, and pushes off from the forefoot, so the print
+is longer and deepest at the toe. gait_shape turns a contact's length of time into that shape.
 """
 
 from dataclasses import dataclass
 
 import numpy as np
 
+from .shaping import smoothstep
+
 PLANT_HEIGHT = 0.1  # foot lengths above the ground: lower than this, the foot may be planted
 LIFT_HEIGHT = 0.2  # higher than this, it has lifted
 PLANT_SPEED = 1.0  # foot lengths per second: slower than this, it may be planted
 LIFT_SPEED = 2.0  # faster than this, it has left
 STRIKE_FRAMES = 3  # the frames before a contact whose downward speed is its strike
+RUN_CONTACT = 0.25  # seconds a running foot stays down (ground contact of a run: 0.2-0.3 s)
+WALK_CONTACT = 0.5  # seconds: this long or longer is a walk (a walking foot: 0.6-0.7 s)
+RUN_STRETCH = 0.25  # a run's print is this much longer: the landing slide and the toe's push
+RUN_TOE_BIAS = 0.4  # a run's print: depth x (1 + bias) at the toe, x (1 - bias) at the heel
 
 
 class ContactError(ValueError):
@@ -30,6 +40,14 @@ class Contact:
     position: np.ndarray  # world (x, y, z): the sole's mean place while planted, z the ground's
     heading: float  # radians about world Z, heel to toe
     strike: float  # downward speed of the sole as it landed, per second (world units)
+    seconds: float  # how long the sole stood: its frames within the planting thresholds, in seconds
+
+
+def gait_shape(seconds):
+    """(length scale, toe bias) of the prints of contacts lasting `seconds`: a walk's (1, 0) from
+    WALK_CONTACT up, a run's (1 + RUN_STRETCH, RUN_TOE_BIAS) from RUN_CONTACT down, smooth between."""
+    running = 1.0 - smoothstep(RUN_CONTACT, WALK_CONTACT, seconds)
+    return 1.0 + RUN_STRETCH * running, RUN_TOE_BIAS * running
 
 
 def planted_runs(height, speed, foot_length):
@@ -72,6 +90,10 @@ def foot_contacts(frames, heel, toe, ground, foot_length, fps):
         place[2] = float(np.nanmean(np.asarray(ground, np.float64)[planted]))
         along = (toe[planted] - heel[planted]).mean(axis=0)
         before = velocity[max(first - STRIKE_FRAMES, 0):first + 1, 2]
+        # The stance without the hysteresis' lift-off allowance, what a gait study would time; the
+        # central differences of the speed lose half a frame at each end.
+        standing = ((height[planted] <= PLANT_HEIGHT * foot_length)
+                    & (speed[planted] <= PLANT_SPEED * foot_length))
         contacts.append(Contact(first, last, place, float(np.arctan2(along[1], along[0])),
-                                float(max(-before.min(), 0.0))))
+                                float(max(-before.min(), 0.0)), float(standing.sum() + 1) / fps))
     return contacts

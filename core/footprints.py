@@ -24,12 +24,13 @@ or per print.
 
 import numpy as np
 
-from .shaping import smoothstep
+from .shaping import smoothstep, wind_direction
 
 F32 = np.float32
 LOG_FLOOR = -69.0  # log(1e-30): a fully pressed texel keeps no rim, without log(0)
 CHUNK_ENTRIES = 1 << 22  # texel-print pairs per batch: bounds memory at any print count
 REPOSE = np.radians(34.0)  # dry quartz sand's angle of repose: the steepest a crumbled wall stands
+WINDWARD_SPEEDUP = 2.0  # the wind's fractional speed-up per unit of windward gradient
 WALL_STEEPNESS = 1.5  # a smoothstep's steepest slope over its mean: a wall this much wider stands at REPOSE
 
 
@@ -164,13 +165,16 @@ def _prepare(centres, forward, lateral, births, depth_scales, frame_range):
     return centres, inverse, birth_unit, scales, order
 
 
-def paint(centres, forward, lateral, births, depth_scales, region, sole=None, frame_range=(0.0, 1.0)):
+def paint(centres, forward, lateral, births, depth_scales, region, sole=None, frame_range=(0.0, 1.0),
+          toe_bias=0.0):
     """Stamp prints into a (height, width, 4) float32 image; returns it (rows from y0 up).
 
     centres (N, 2): print centres in the painting plane (the print frame's X and Y: world-aligned).
     forward, lateral (N, 2): the print's unit forward and lateral axes projected onto the
         plane (on flat ground, (cos h, sin h) and (-sin h, cos h); on a slope, shorter).
     births (N,): frames; depth_scales (N,): per-print multipliers of depth and rim (> 0).
+    toe_bias (N,) or scalar: a print's depth runs from (1 - bias) at the heel to (1 + bias) at
+        the toe (a run pushes off from the forefoot); 0 presses evenly.
     Prints with a non-finite value, a zero scale or a degenerate frame are skipped.
     """
     sole = sole or Sole()
@@ -180,6 +184,8 @@ def paint(centres, forward, lateral, births, depth_scales, region, sole=None, fr
                                                            depth_scales, frame_range)
     if len(order) == 0:
         return out
+    toe = np.nan_to_num(np.broadcast_to(np.asarray(toe_bias, np.float64), (len(centres),)))
+    toe = np.clip(toe, -1.0, 1.0)
     # Each print's box in the plane: the sole's half-length and half-width plus the wall and the
     # rim band, through its (projected) axes. A square of the full reach would hold twice the texels.
     band = sole.edge_width(texel) + sole.rim_band(texel)
@@ -194,11 +200,11 @@ def paint(centres, forward, lateral, births, depth_scales, region, sole=None, fr
     for begin in range(0, len(order), per_chunk):
         prints = order[begin:begin + per_chunk]
         _stamp_chunk(flat, region, sole, windows[prints].max(axis=0), half[prints], prints,
-                     centres, inverse, birth_unit, scales)
+                     centres, inverse, birth_unit, scales, toe)
     return out
 
 
-def _stamp_chunk(flat, region, sole, window, half, prints, centres, inverse, birth_unit, scales):
+def _stamp_chunk(flat, region, sole, window, half, prints, centres, inverse, birth_unit, scales, toe):
     texel = region.texel
     c = centres[prints]
     first = np.floor((c - (region.x0, region.y0) - half) / texel).astype(np.int64)
@@ -221,9 +227,12 @@ def _stamp_chunk(flat, region, sole, window, half, prints, centres, inverse, bir
         return
     scale = scales[prints][rank]
     birth = birth_unit[prints][rank]
+    # The depth tilts from heel (-1) to toe (+1) along the sole; the rim stays even.
+    tilt = 1.0 + toe[prints][rank] * np.clip(a[inside].astype(np.float64) / (sole.length / 2), -1.0, 1.0)
     # Group by texel, in birth order within each texel (prints arrive sorted by birth).
     sort = np.argsort(pixel * len(prints) + rank, kind="stable")
     pixel, pressed, rim, scale, birth = pixel[sort], pressed[sort], rim[sort], scale[sort], birth[sort]
+    tilt = tilt[sort]
     starts = np.flatnonzero(np.concatenate(([True], pixel[1:] != pixel[:-1])))
     ends = np.append(starts[1:], pixel.size)
     texels = pixel[starts]
@@ -234,7 +243,7 @@ def _stamp_chunk(flat, region, sole, window, half, prints, centres, inverse, bir
     group_end = np.repeat(ends, ends - starts)
     later = suffix[np.arange(pixel.size) + 1] - suffix[group_end]
     surviving = _flush(rim * scale * np.exp(later))
-    depth = pressed * scale
+    depth = pressed * scale * tilt
 
     chunk_depth = np.maximum.reduceat(depth, starts)
     chunk_rim = np.maximum.reduceat(surviving, starts)
@@ -263,18 +272,37 @@ def frame_span(start, end):
     return max(float(end) - float(start), 1.0)
 
 
-def revealed_height(image, depth, rim, frame, frame_range, margin=1e-3, refill=0.0):
+def windward_refill_rate(normal, wind):
+    """How many times faster the wind fills a print where the ground rises into it: the wind
+    speeds up over a windward slope by about 1 + 2 g (g its gradient; Jackson and Hunt 1975 give
+    a speed-up of about 2 H / L over a low hill) and the sand it carries grows as the cube of its
+    speed (Bagnold), so (1 + 2 g)^3, g up to the angle of repose. 1 on flat ground, in the lee
+    and in a calm. normal (..., 3): the ground's unit normal, world axes; wind: the scene's."""
+    normal = np.asarray(normal, np.float64)
+    direction = wind_direction(wind)
+    windy = float(np.hypot(wind[0], wind[1]) >= 1e-9)
+    into = -(normal @ direction) / np.maximum(normal[..., 2], 1e-3)
+    rise = np.clip(into, 0.0, np.tan(REPOSE)) * windy
+    return (1.0 + WINDWARD_SPEEDUP * rise) ** 3
+
+
+def revealed_height(image, depth, rim, frame, frame_range, margin=1e-3, refill=0.0, normal=(0, 0, 1),
+                    wind=(0, 0, 0)):
     """Twin of node group Sandscape Footprint Height at Noise Amount 0 (float32, like Cycles).
 
     A texel shows once B * span + start < frame + margin; with a refill time (frames) the wind
-    has filled it to exp(-age / refill) of its depth and rim.
+    has filled it to exp(-age rate / refill) of its depth and rim, rate the windward_refill_rate of
+    the ground's normal (a vector or one per texel) in the wind.
     """
     f = np.float32
     start, end = frame_range
     rgb = image[..., :3].astype(f)
     birth = rgb[..., 2] * f(frame_span(start, end)) + f(start)
     born = (birth < f(frame) + f(margin)).astype(f)
-    left = np.exp(-np.maximum(f(frame) - birth, f(0)) / f(refill)).astype(f) if refill > 0 else f(1)
+    left = f(1)
+    if refill > 0:
+        rate = windward_refill_rate(normal, wind).astype(f)
+        left = np.exp(-np.maximum(f(frame) - birth, f(0)) * rate / f(refill)).astype(f)
     return (rgb[..., 1] * f(rim) - rgb[..., 0] * f(depth)) * born * left
 
 

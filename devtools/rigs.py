@@ -15,6 +15,12 @@ PLANTS = {
     1: [(0.0, 0.0, 0.0, 1, 14), (1.3, 0.1, 0.15, 27, 40), (2.6, 0.45, 0.4, 53, 90)],
     -1: [(0.65, 0.0, 0.0, 1, 27), (1.95, 0.25, 0.3, 40, 53), (2.55, 0.15, 0.4, 66, 90)],
 }
+# A jog at 24 fps (3.2 m/s): each foot down 5 frames (0.21 s), 1.2 m steps, both feet off between;
+# the right foot is in the air as the scene starts (its plant before frame 1 is never sampled).
+RUN_PLANTS = {
+    1: [(0.0, 0.0, 0.0, 1, 5), (2.4, 0.0, 0.0, 19, 23), (4.8, 0.0, 0.0, 37, 41)],
+    -1: [(-1.2, 0.0, 0.0, -8, -4), (1.2, 0.0, 0.0, 10, 14), (3.6, 0.0, 0.0, 28, 32), (6.0, 0.0, 0.0, 46, 50)],
+}
 NAMES = {
     "metarig": {1: ("foot.L", "toe.L"), -1: ("foot.R", "toe.R")},
     "rigify": {1: ("DEF-foot.L", "DEF-toe.L"), -1: ("DEF-foot.R", "DEF-toe.R")},
@@ -46,7 +52,7 @@ def placement(side, x, y, heading, lift):
             @ Matrix.Translation(-ankle))
 
 
-def walking_rig(convention, frames=90, extra_bones=0):
+def walking_rig(convention, frames=90, extra_bones=0, plants=PLANTS):
     """The rig, keyed on frames 1..frames (the walk is over by 90); extra_bones keyed bones more,
     a chain standing in for a body, cost a real rig evaluates on every frame."""
     armature = bpy.data.objects.new("Rig", bpy.data.armatures.new("Rig"))
@@ -75,17 +81,17 @@ def walking_rig(convention, frames=90, extra_bones=0):
         for side, (foot, _) in NAMES[convention].items():
             bone = armature.pose.bones[foot]
             bone.rotation_mode = "QUATERNION"
-            bone.matrix = placement(side, *foot_place(PLANTS[side], frame)) @ bone.bone.matrix_local
+            bone.matrix = placement(side, *foot_place(plants[side], frame)) @ bone.bone.matrix_local
             bpy.context.view_layer.update()
             bone.keyframe_insert("location", frame=frame)
             bone.keyframe_insert("rotation_quaternion", frame=frame)
     return armature
 
 
-def expected_prints():
+def expected_prints(gait=PLANTS):
     """Each plant's sole middle (world x, y), heading and first frame."""
     rows = []
-    for side, plants in PLANTS.items():
+    for side, plants in gait.items():
         for x, y, heading, first, _ in plants:
             middle = placement(side, x, y, heading, 0.0) @ ((ANKLE + TIP) / 2 + Vector((0, side * STANCE, 0)))
             rows.append((middle.x, middle.y, heading, first, side))

@@ -4,14 +4,19 @@ Seed 000, section 3.2: red records depressions, green raised rims, and a noise t
 adds subtle variation. Blue holds each texel's birth frame, so one image reveals the prints
 as the walker passes: a texel counts once Frame has reached its birth frame. Frame is
 driven by the expression `frame`, which runs without Python auto-run. With a Refill Time the
-wind fills a print in: its depth and rim ease towards the surface as exp(−age / Refill Time).
+wind fills a print in: its depth and rim ease towards the surface as exp(−age × rate / Refill
+Time), rate 1 on flat ground and in the lee and (1 + 2 g)³ where the ground rises into the Wind
+at gradient g (core.footprints.windward_refill_rate says why).
 Twin: core.footprints.revealed_height (with Noise Amount 0).
 """
 
+import math
+
+from ..core.footprints import REPOSE, WINDWARD_SPEEDUP
 from . import helper as h
 
 NAME = "Sandscape Footprint Height"
-VERSION = 3
+VERSION = 4
 TREE_TYPE = "ShaderNodeTree"
 DESCRIPTION = (
     "Footprint displacement from a Sandscape print map: Rim × G − Depth × R, revealed where "
@@ -39,6 +44,8 @@ INPUTS = {
                     40.0, 0.0, None, None),
     "Refill Time": ("NodeSocketFloat", "Frames in which the wind fills a print to 1/e of its depth and "
                     "rim (exp(−age / Refill Time)); 0: prints stay as pressed", 0.0, 0.0, None, None),
+    "Wind": ("NodeSocketVector", "The scene's wind (world velocity): prints on slopes facing it fill "
+             "faster", (0.0, 0.0, 0.0), None, None, "VELOCITY"),
 }
 OUTPUTS = {
     "Height": ("NodeSocketFloat", "Height of the revealed prints in metres: Rim G - Depth R, varied"),
@@ -77,7 +84,9 @@ def build(tree):
     age = h.math(tree, "SUBTRACT", inputs["Frame"], birth.outputs[0], label="Age (frames)")
     age_floor = h.math(tree, "MAXIMUM", age.outputs[0], 0.0, label="Age ≥ 0")
     time = h.math(tree, "MAXIMUM", inputs["Refill Time"], 1e-6, label="Refill Time > 0")
-    ratio = h.math(tree, "DIVIDE", age_floor.outputs[0], time.outputs[0], label="Age / Refill Time")
+    rate, rate_nodes = _windward_rate(tree, inputs["Wind"])
+    windward_age = h.math(tree, "MULTIPLY", age_floor.outputs[0], rate, label="Age × Windward Rate")
+    ratio = h.math(tree, "DIVIDE", windward_age.outputs[0], time.outputs[0], label="Age / Refill Time")
     negative = h.math(tree, "MULTIPLY", ratio.outputs[0], -1.0, label="−Age / Refill Time")
     left = h.math(tree, "EXPONENT", negative.outputs[0], label="Left")
     refills = h.math(tree, "GREATER_THAN", inputs["Refill Time"], 0.0, label="Refills")
@@ -108,7 +117,32 @@ def build(tree):
     h.frame(tree, "Channels", (channels,))
     h.frame(tree, "Reveal at the Birth Frame", (span, span_floor, birth, now, born))
     h.frame(tree, "Rim − Depth", (rim, depth, base, shown))
-    h.frame(tree, "Wind Refill", (age, age_floor, time, ratio, negative, left, refills, kept, revealed))
+    h.frame(tree, "Wind Refill", (age, age_floor, windward_age, time, ratio, negative, left, refills, kept,
+                                  revealed))
+    h.frame(tree, "Windward Rate", rate_nodes)
     h.frame(tree, "Variation", (noise, centred, variation, height))
     h.frame(tree, "Displacement", (displacement,))
     h.arrange(tree)
+
+
+def _windward_rate(tree, wind):
+    """(1 + 2 g)³, g = clamp(−N·wind / N_z, 0, tan repose), 0 in a calm: the twin's rate."""
+    direction, wind_nodes = h.wind_direction(tree, wind)
+    calm = wind_nodes[2]
+    geometry = h.add_node(tree, "ShaderNodeNewGeometry", label="Ground Normal")
+    facing = h.vector_math(tree, "DOT_PRODUCT", geometry.outputs["Normal"], direction, label="N · Wind")
+    normal_parts = h.add_node(tree, "ShaderNodeSeparateXYZ", label="Normal Parts")
+    h.link(tree, geometry.outputs["Normal"], normal_parts.inputs[0])
+    up = h.math(tree, "MAXIMUM", normal_parts.outputs["Z"], 1e-3, label="N_z > 0")
+    into = h.math(tree, "DIVIDE", facing.outputs["Value"], up.outputs[0], label="−Gradient Into Wind")
+    rise = h.math(tree, "MULTIPLY", into.outputs[0], -1.0, label="Gradient Into Wind")
+    windward = h.math(tree, "MAXIMUM", rise.outputs[0], 0.0, label="Windward Only")
+    steepest = h.math(tree, "MINIMUM", windward.outputs[0], float(math.tan(REPOSE)), label="≤ Repose")
+    windy = h.math(tree, "SUBTRACT", 1.0, calm.outputs[0], label="Windy")
+    gradient = h.math(tree, "MULTIPLY", steepest.outputs[0], windy.outputs[0], label="Gradient (0 Calm)")
+    speedup = h.add_node(tree, "ShaderNodeMath", label="1 + 2 g", operation="MULTIPLY_ADD",
+                         inputs={1: WINDWARD_SPEEDUP, 2: 1.0})
+    h.link(tree, gradient.outputs[0], speedup.inputs[0])
+    cubed = h.math(tree, "POWER", speedup.outputs[0], 3.0, label="Rate = Speed-Up³")
+    return cubed.outputs[0], (*wind_nodes, geometry, facing, normal_parts, up, into, rise, windward,
+                              steepest, windy, gradient, speedup, cubed)

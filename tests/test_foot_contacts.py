@@ -80,3 +80,19 @@ def test_bad_feet_are_refused():
         contacts.foot_contacts([0, 1], np.zeros((2, 3)), np.zeros((2, 3)), np.zeros(2), 0.0, FPS)
     with pytest.raises(contacts.ContactError, match="two frames"):
         contacts.foot_contacts([0], np.zeros((1, 3)), np.zeros((1, 3)), np.zeros(1), FOOT, FPS)
+
+
+def test_a_run_prints_longer_and_deeper_at_the_toe_a_walk_evenly():
+    """A run's foot is down about a quarter of a second, a walk's over half a second (gait
+    studies: 0.2-0.3 s and 0.6-0.7 s): their prints' length scale and toe bias."""
+    walk = found(*gait([(0.0, 0, 0, 0, 14), (1.4, 0, 0, 26, 40), (2.8, 0, 0, 52, 66)], 0.12, 70))
+    run = found(*gait([(0.0, 0, 0, 0, 5), (3.0, 0, 0, 17, 22), (6.0, 0, 0, 34, 39)], 0.35, 40))
+    walk_seconds, run_seconds = walk[1].seconds, run[1].seconds
+    print(f"stance: walk {walk_seconds:.3f} s, run {run_seconds:.3f} s")
+    assert walk_seconds > 0.5 and run_seconds < 0.3
+    assert contacts.gait_shape(walk_seconds) == (1.0, 0.0)
+    stretch, toe = contacts.gait_shape(run_seconds)
+    assert stretch == pytest.approx(1.0 + contacts.RUN_STRETCH)
+    assert toe == pytest.approx(contacts.RUN_TOE_BIAS)
+    between = [contacts.gait_shape(s) for s in np.linspace(0.25, 0.5, 6)]
+    assert all(a[0] >= b[0] and a[1] >= b[1] for a, b in zip(between[:-1], between[1:], strict=True))

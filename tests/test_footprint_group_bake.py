@@ -90,3 +90,28 @@ def test_noise_varies_height_within_its_amount(sandscape, print_map):
     base = twin.revealed_height(pixels, 0.03, 0.008, 300.0, (1.0, 250.0))
     ratio = baked[base != 0] / base[base != 0]
     assert ratio.min() >= 0.8 - 1e-4 and ratio.max() <= 1.2 + 1e-4 and ratio.std() > 0.01
+
+
+@pytest.mark.parametrize("wind", [(-3.0, 0.0, 0.0), (3.0, 0.0, 0.0), (0.0, 0.0, 0.0)],
+                         ids=["windward", "lee", "calm"])
+def test_the_wind_fills_prints_on_a_windward_slope_faster(sandscape, print_map, wind):
+    """On a plane tilted 20 degrees to face +X: a wind from +X (blowing along -X) fills its prints
+    (1 + 2 tan 20)^3 times faster; blowing along +X (the lee) or calm, at the flat rate. Checked
+    against the twin and against the law exp(-age rate / refill)."""
+    image, pixels = print_map
+    values = {"Depth": 0.03, "Rim": 0.008, "Frame": 200.0, "Frame Start": 1.0, "Frame End": 250.0,
+              "Noise Amount": 0.0, "Refill Time": 200.0, "Wind": wind}
+    material = probe_material(sandscape, image, values)
+    plane = readback.uv_plane()
+    plane.rotation_euler.y = np.radians(20.0)
+    plane.data.materials.append(material)
+    baked = (readback.bake_emit(plane, material, RES)[..., 0] - OFFSET) / GAIN
+    normal = (np.sin(np.radians(20.0)), 0.0, np.cos(np.radians(20.0)))
+    expected = twin.revealed_height(pixels, 0.03, 0.008, 200.0, (1.0, 250.0), refill=200.0, normal=normal,
+                                    wind=wind)
+    assert np.abs(baked - expected).max() < TOLERANCE
+    rate = (1 + 2 * np.tan(np.radians(20.0))) ** 3 if wind[0] < 0 else 1.0
+    birth = pixels[..., 2] * 249.0 + 1.0
+    pressed = pixels[..., 1] * 0.008 - pixels[..., 0] * 0.03
+    law = np.where(birth < 200.0, pressed * np.exp(-(200.0 - birth) * rate / 200.0), 0.0)
+    assert np.abs(baked - law).max() < 2 * TOLERANCE

@@ -221,3 +221,40 @@ def test_walls_stand_at_the_angle_of_repose(depth):
           f"steepest {steepest:.2f} deg")
     assert 33.0 <= steepest <= 34.0
     assert profile.max() == pytest.approx(depth, rel=1e-6)
+
+
+def test_a_runs_print_is_deepest_at_the_toe():
+    """toe_bias b: depth (1 + b a / (L/2)) on the sole's floor, a from the middle toward the toe;
+    the rim and the print's outline do not change. Reference: that line, at texel centres."""
+    sole = fp.Sole()
+    centre = np.array([[0.0, 0.0]])
+    region = aligned_region(centre, sole)
+    even = fp.paint(centre, [[1.0, 0.0]], [[0.0, 1.0]], [0.0], 1.0, region, sole)
+    tilted = fp.paint(centre, [[1.0, 0.0]], [[0.0, 1.0]], [0.0], 1.0, region, sole, toe_bias=[0.4])
+    row = texel_of(region, (0.0, 0.0))[0]
+    xs = region.x0 + (np.arange(region.width) + 0.5) * TEXEL
+    floor = even[row, :, 0] > 1.0 - 1e-6
+    assert floor.sum() > 30
+    expected = 1.0 + 0.4 * xs[floor] / (sole.length / 2)
+    assert np.abs(tilted[row, floor, 0] - expected).max() < 1e-5
+    assert tilted[row, floor, 0].max() > 1.35 and tilted[row, floor, 0].min() < 0.65
+    assert np.array_equal(tilted[..., 1:], even[..., 1:])  # rim, birth and coverage as before
+
+
+def test_the_wind_fills_windward_prints_faster():
+    """Refill rate (1 + 2 g)^3 on ground rising into the wind at gradient g (speed-up over a low
+    hill, sand flux as the cube of the wind's speed), up to the angle of repose; 1 elsewhere."""
+    tilt = math.radians(20.0)
+    facing_plus_x = (math.sin(tilt), 0.0, math.cos(tilt))
+    assert fp.windward_refill_rate((0, 0, 1), (5, 0, 0)) == pytest.approx(1.0)  # flat
+    assert fp.windward_refill_rate(facing_plus_x, (0, 0, 0)) == pytest.approx(1.0)  # calm
+    assert fp.windward_refill_rate(facing_plus_x, (3, 0, 0)) == pytest.approx(1.0)  # lee
+    assert fp.windward_refill_rate(facing_plus_x, (-3, 0, 0)) == pytest.approx((1 + 2 * math.tan(tilt)) ** 3)
+    cliff = (math.sin(1.2), 0.0, math.cos(1.2))
+    assert fp.windward_refill_rate(cliff, (-3, 0, 0)) == pytest.approx((1 + 2 * math.tan(fp.REPOSE)) ** 3)
+    image = np.zeros((1, 1, 4), np.float32)
+    image[0, 0] = (1.0, 0.0, 0.0, 1.0)  # a print born at frame 0
+    left = [fp.revealed_height(image, 0.03, 0.0, 40.0, (0, 100), refill=40.0, normal=normal, wind=(-3, 0, 0))
+            for normal in ((0, 0, 1), facing_plus_x)]
+    assert left[0][0, 0] == pytest.approx(-0.03 * math.exp(-1.0), rel=1e-5)
+    assert left[1][0, 0] == pytest.approx(-0.03 * math.exp(-(1 + 2 * math.tan(tilt)) ** 3), rel=1e-4)

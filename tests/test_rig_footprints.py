@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from devtools import operators, readback, scenes
-from devtools.rigs import NAMES, expected_prints, walking_rig
+from devtools.rigs import NAMES, RUN_PLANTS, expected_prints, walking_rig
 
 
 @pytest.mark.parametrize("convention", sorted(NAMES))
@@ -109,3 +109,78 @@ def test_two_walkers_with_their_own_feet_go_into_one_image():
     assert hiker_area / rig_area == pytest.approx(1.5 ** 2, rel=0.1)
     assert settings.more_walkers and bpy.ops.sandscape.footprint_walker_remove(index=0) == {"FINISHED"}
     assert not settings.more_walkers
+
+
+def point_values(names):
+    points = next(o for o in bpy.data.objects if o.get("sandscape_object") == "footprints")
+    bpy.context.view_layer.update()
+    co = np.array([v.co[:] for v in points.data.vertices]) + np.array(points.matrix_world.translation)
+    return co, {name: np.array([d.value for d in points.data.attributes[name].data]) for name in names}
+
+
+def test_a_run_leaves_longer_prints_deepest_at_the_toe():
+    """A jog (each foot down 5 frames, 0.21 s) ending in a stop: the running prints where the
+    feet landed, 25 % longer and deeper at the toe; the standing ones even. Reference: the keyed
+    plants, and the painted image read back along each print's axis."""
+    terrain = scenes.height_field(12.0, 16, name="Their Sand")
+    terrain.location.x = 3.0
+    armature = walking_rig("mixamo", plants=RUN_PLANTS)
+    scenes.footprint_settings(terrain, armature, (1, 90), resolution=2048, variation=0.0)
+    result, reports = operators.run_execute("sandscape.paint_footprints")
+    assert result == {"FINISHED"}, reports
+    co, values = point_values(("birth_frame", "side", "length_scale", "toe_bias"))
+    wanted = [row for row in expected_prints(RUN_PLANTS) if row[3] >= 1]  # plants within the scene
+    assert len(co) == len(wanted) == 6
+    order = np.lexsort((-values["side"], values["birth_frame"]))
+    for index, (x, y, _, first, _) in zip(order, wanted, strict=True):
+        assert math.hypot(co[index, 0] - x, co[index, 1] - y) < 0.03
+        assert abs(values["birth_frame"][index] - first) <= 2
+    running = values["birth_frame"] < 35  # the last plant of each foot is the stop
+    assert running.sum() == 4
+    assert np.allclose(values["length_scale"][running], 1.25)
+    assert np.allclose(values["toe_bias"][running], 0.4)
+    assert np.all(values["length_scale"][~running] == 1.0) and np.all(values["toe_bias"][~running] == 0.0)
+    image = next(i for i in bpy.data.images if i.get("sandscape_image") == "print_map")
+    pixels = np.empty(image.size[0] * image.size[1] * 4, np.float32)
+    image.pixels.foreach_get(pixels)
+    pixels = pixels.reshape(image.size[1], image.size[0], 4)
+    low, size = np.array(image["region_min"]), np.array(image["region_size"])
+
+    def depth_at(x, y):
+        col = int((x - low[0]) / size[0] * image.size[0])
+        row = int((y - low[1]) / size[1] * image.size[1])
+        return pixels[row, col, 0]
+
+    frame = np.array(next(o for o in bpy.data.objects if o.get("sandscape_object") == "print_frame")
+                     .matrix_world.translation)
+    for index in np.flatnonzero(running):
+        x, y = co[index, :2] - frame[:2]
+        along = 0.08 / 1.25  # 8 cm toward the toe in the world is this far along the unstretched sole
+        ratio = depth_at(x + 0.08, y) / depth_at(x - 0.08, y)
+        expected = (1 + 0.4 * along / 0.135) / (1 - 0.4 * along / 0.135)
+        assert ratio == pytest.approx(expected, rel=0.05)
+    stop = np.flatnonzero(~running)[0]
+    x, y = co[stop, :2] - frame[:2]
+    assert depth_at(x + 0.08, y) == pytest.approx(depth_at(x - 0.08, y), rel=0.02)
+
+
+def test_each_path_walker_keeps_its_own_stride():
+    """A grown-up and a child along paths: the child's Stride 0.5 halves its stride and stance.
+    Reference: the spacing of its prints along the path and across it."""
+    terrain = scenes.height_field(8.0, 16, name="Their Sand")
+    def along(y):
+        return lambda f: (-3.0 + 6.0 * (f - 1) / 89, y, 0.0)
+
+    adult = scenes.keyframed_walker(along(1.0), range(1, 91), name="Adult")
+    settings = scenes.footprint_settings(terrain, adult, (1, 90), stride=0.7, stance=0.2)
+    child = scenes.keyframed_walker(along(-1.0), range(1, 91), name="Child")
+    entry = settings.more_walkers.add()
+    entry.walker, entry.foot_scale, entry.stride_scale = child, 0.6, 0.5
+    result, reports = operators.run_execute("sandscape.emit_footprints")
+    assert result == {"FINISHED"}, reports
+    co, _ = point_values(())
+    for middle, stride, stance in ((1.0, 0.7, 0.2), (-1.0, 0.35, 0.1)):
+        mine = co[np.abs(co[:, 1] - middle) < 0.5]
+        xs = np.sort(mine[:, 0])
+        assert np.diff(xs).mean() == pytest.approx(stride, rel=0.02)
+        assert np.ptp(mine[:, 1]) == pytest.approx(stance, abs=1e-3)

@@ -112,9 +112,11 @@ class SANDSCAPE_PT_footprints(SandscapeSubPanel, bpy.types.Panel):
             for index, entry in enumerate(settings.more_walkers):  # more walkers on the same sand
                 row = layout.row()
                 row.prop(entry, "walker", text="")
+                row.operator("sandscape.footprint_walker_remove", text="", icon="X").index = index
+                row = layout.row(align=True)
                 row.prop(entry, "foot_scale")
                 row.prop(entry, "depth_scale")
-                row.operator("sandscape.footprint_walker_remove", text="", icon="X").index = index
+                row.prop(entry, "stride_scale")
                 rig = rig_feet.armature_of(entry.walker)
                 if rig is not None:
                     layout.prop_search(entry, "left_foot", rig.data, "bones")
