@@ -8,7 +8,7 @@ rerouted, so a decision is easy to undo by hand (and Ctrl+Z undoes the whole ope
 import numpy as np
 from mathutils import Vector
 
-from . import evaluation, post, sand, sun_keys
+from . import atmosphere, evaluation, post, sand, sun_screen
 from . import ownership as own
 
 VOLUME_SHADERS = {"ShaderNodeVolumeScatter", "ShaderNodeVolumeAbsorption", "ShaderNodeVolumePrincipled",
@@ -120,7 +120,7 @@ def _seen_by_camera(scene, obj):
     frames = sorted({scene.frame_start, (scene.frame_start + scene.frame_end) // 2, scene.frame_end})
     for _ in evaluation.stepped_frames(scene, frames):
         corners = np.array([obj.matrix_world @ Vector(c) for c in obj.bound_box])
-        clip = np.c_[corners, np.ones(8)] @ sun_keys.view_projection(scene, camera).T
+        clip = np.c_[corners, np.ones(8)] @ sun_screen.view_projection(scene, camera).T
         w = clip[:, 3]
         if (w > 0).all():
             ndc = clip[:, :2] / w[:, None]
@@ -172,24 +172,28 @@ def _bypass(tree, add):
 
 def _idle_god_rays(scene):
     tree = own.scene_compositor(scene)
-    rays = sun_keys.rays_node(tree)
+    rays = sun_screen.rays_node(tree)
     if rays is None:
         return
     reason = None
     if rays.inputs["Exposure"].default_value == 0 or rays.inputs["Weight"].default_value == 0:
         reason = "their strength is 0"
-    elif _always_zero(tree, rays):
+    elif _always_zero(scene):
         reason = "the sun is out of view on every frame"
     if reason:
         yield Decision(f"God rays removed from the compositor: {reason}", lambda s=scene: _drop_rays(s),
                        IDLE_RAYS, scene)
 
 
-def _always_zero(tree, rays):
-    keyed = sun_keys.keyed_curve(tree)
-    if keyed is None:
-        return rays.inputs["Intensity"].default_value == 0
-    return all(intensity == 0 for *_, intensity in keyed)
+def _always_zero(scene):
+    """The sun is out of view on every frame: from its keys where they are all that moves the
+    camera and the sun, else by stepping the frames."""
+    sun = atmosphere.scene_sun(scene)
+    if sun is None or scene.camera is None:
+        return True
+    fade_node = own.node(own.scene_compositor(scene), sun_screen.PLACE)
+    fade = fade_node.inputs["Fade"].default_value if fade_node is not None else scene.sandscape_post.fade
+    return all(intensity == 0 for *_, intensity in sun_screen.sun_curve(scene, sun, fade))
 
 
 def _drop_rays(scene):

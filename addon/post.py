@@ -5,8 +5,9 @@ Not a shared group but the tree on scene.compositing_node_group, one per scene, 
 settings on every run (an effect switched off is absent, not bypassed). Its parts are the
 versioned groups Sandscape Gated Blur and Sandscape God Rays.
 
-The god rays need the sun's place on screen on every frame: it is keyframed (sun_keys.py), so a
-render farm without Sandscape renders it; post_handlers.py keeps the keys up to date.
+The god rays need the sun's place on screen on every frame: simple-expression drivers give it
+(sun_screen.py), and the display white follows the exposure the same way, so the tree follows
+any camera, sun or exposure with no handler and a render farm without Sandscape renders it.
 """
 
 import types
@@ -15,7 +16,7 @@ import bpy
 
 from ..node_groups import gated_blur, god_rays
 from ..node_groups import helper as h
-from . import atmosphere, evaluation, sand, sun_keys
+from . import atmosphere, drivers, evaluation, sand, sun_screen
 from . import ownership as own
 from . import post_passes as passes
 
@@ -28,9 +29,20 @@ SPARKLE_BAR = (1.5, 3.0)  # its glint light
 DENOISED_BAR = (1.1, 1.3)  # its denoised self
 
 
+WHITE_EXPRESSION = "pow(2, -exposure)"
+
+
 def display_white(scene):
-    """The linear value the view shows as white: 2^-exposure."""
+    """The linear value the view shows as white: 2^-exposure (WHITE_EXPRESSION)."""
     return 2.0 ** -scene.view_settings.exposure
+
+
+def _clear_animation(tree):
+    """The tree's drivers go with its nodes; so does the action of sun keys older files hold."""
+    action = tree.animation_data.action if tree.animation_data is not None else None
+    tree.animation_data_clear()
+    if action is not None and action.users == 0:
+        bpy.data.actions.remove(action)
 
 
 def build(tree, settings, white=1.0, image_denoised=False, scene=None, engine=passes.CYCLES, layer=None):
@@ -41,6 +53,7 @@ def build(tree, settings, white=1.0, image_denoised=False, scene=None, engine=pa
     whose render layers the tree reads (default: the context's); layer: which of its view layers.
     engine: whose passes there are (EEVEE has no indirect volume light and no denoising data)."""
     tree.nodes.clear()
+    _clear_animation(tree)
     if not tree.interface.items_tree:
         h.add_output(tree, "Image", "NodeSocketColor", "The composited frame")
     tree.description = ("Sandscape post effects: denoising of all but the glints, gated blur of the "
@@ -62,16 +75,24 @@ def build(tree, settings, white=1.0, image_denoised=False, scene=None, engine=pa
             volume = _denoise(tree, volume, name=DENOISE_VOLUME)
         image = _with_blurred(tree, layers, image, volume, settings)
     if settings.use_god_rays:
-        rays = h.add_node(tree, "CompositorNodeGroup", name=sun_keys.RAYS, label="God Rays",
+        rays = h.add_node(tree, "CompositorNodeGroup", name=sun_screen.RAYS, label="God Rays",
                           node_tree=h.ensure_group(god_rays),
                           inputs={"Samples": float(settings.samples), "Density": settings.ray_density,
                                   "Weight": settings.ray_weight, "Decay": settings.ray_decay,
                                   "Exposure": settings.ray_exposure})
-        h.link(tree, _occlusion(tree, layers, rays, settings.disc_radius), rays.inputs["Occlusion"])
+        # The driven sun place sets both the disc and the rays: one source of truth per frame.
+        place = sun_screen.add_nodes(tree, settings.fade)
+        h.link(tree, place.outputs["Sun"], rays.inputs["Sun"])
+        h.link(tree, place.outputs["Intensity"], rays.inputs["Intensity"])
+        h.link(tree, _occlusion(tree, layers, place.outputs["Sun"], settings.disc_radius),
+               rays.inputs["Occlusion"])
         # In display units: Exposure 1 gives the same rays at any scene exposure (the demo's
         # -2.7 had left the default rays at a mean change of 0.0006).
-        scale = h.add_node(tree, "ShaderNodeValue", name=WHITE, label="Display White (keyed)")
+        scale = h.add_node(tree, "ShaderNodeValue", name=WHITE, label="Display White (driven)")
         scale.outputs[0].default_value = white
+        if scene is not None:  # 2^-exposure, whatever the exposure becomes
+            drivers.drive(scale.outputs[0], "default_value", WHITE_EXPRESSION,
+                          [("exposure", "SCENE", scene, "view_settings.exposure")])
         shown = h.vector_math(tree, "SCALE", rays.outputs["Rays"], label="× Display White")
         h.link(tree, scale.outputs[0], shown.inputs["Scale"])
         total = h.add_node(tree, "ShaderNodeVectorMath", label="+ God Rays", operation="ADD")
@@ -210,7 +231,7 @@ def _denoised(tree, layers, settings, image_denoised=False):
     return sparkling.outputs["Result"]
 
 
-def _occlusion(tree, layers, rays, radius):
+def _occlusion(tree, layers, sun, radius):
     """Sun colour inside a soft disc of `radius` (frame heights) around the sun, where sky is seen."""
     coordinates = h.add_node(tree, "CompositorNodeImageCoordinates")
     h.link(tree, layers.outputs["Image"], coordinates.inputs["Image"])
@@ -225,8 +246,7 @@ def _occlusion(tree, layers, rays, radius):
     aspect = h.math(tree, "DIVIDE", size.outputs["X"], size.outputs["Y"], label="Aspect")
     offset = h.add_node(tree, "ShaderNodeVectorMath", operation="SUBTRACT")
     h.link(tree, coordinates.outputs["Normalized"], offset.inputs[0])
-    sun = h.add_node(tree, "ShaderNodeCombineXYZ", name=sun_keys.SUN_KEY, label="Sun (keyed)")
-    h.link(tree, sun.outputs[0], offset.inputs[1])
+    h.link(tree, sun, offset.inputs[1])
     split = h.add_node(tree, "ShaderNodeSeparateXYZ")
     h.link(tree, offset.outputs[0], split.inputs[0])
     wide = h.math(tree, "MULTIPLY", split.outputs["X"], aspect.outputs[0], label="dx × aspect")
@@ -245,8 +265,6 @@ def _occlusion(tree, layers, rays, radius):
     tint = h.add_node(tree, "ShaderNodeVectorMath", label="Sun Colour", operation="SCALE",
                       inputs={0: SUN_COLOR[:3]})
     h.link(tree, both.outputs[0], tint.inputs["Scale"])
-    # The keyed sun position drives the rays as well: one source of truth per frame.
-    h.link(tree, sun.outputs[0], rays.inputs["Sun"])
     return tint.outputs[0]
 
 
@@ -284,7 +302,7 @@ def apply_post_effects(scene, settings, rebuild_only=False):
             previous = bpy.data.node_groups.get(ours.get("replaced_tree", ""))
             scene.compositing_node_group = previous
             bpy.data.node_groups.remove(ours)
-        return {"tree": None, "replaced": replaced, "curve": [], "changes": changes, "skipped": []}
+        return {"tree": None, "replaced": replaced, "changes": changes, "skipped": []}
     if ours is None:
         ours = own.mark(bpy.data.node_groups.new("Sandscape Post Effects", "CompositorNodeTree"),
                         own.TREE_KEY, True)
@@ -297,20 +315,18 @@ def apply_post_effects(scene, settings, rebuild_only=False):
     # the sparkles and its denoised image for the rest.
     build(ours, settings, display_white(scene), engine == passes.CYCLES and scene.cycles.use_denoising,
           scene, engine, layer)
-    ours["fade"] = settings.fade
     ours["built_for"] = route(scene, settings)
     scene.compositing_node_group = ours
     if not scene.render.use_compositing and not rebuild_only:
         changes.append("compositing turned on (Output properties > Post Processing)")
         scene.render.use_compositing = True
-    curve = []
     if settings.use_god_rays:
-        curve = sun_keys.key_scene(ours, scene, atmosphere.scene_sun(scene), settings.fade)
+        sun_screen.attach(ours, scene, atmosphere.scene_sun(scene))
     skipped = []
     if settings.use_denoise and not passes.denoises(settings, engine):
         skipped.append(f"denoising all but the glints (Cycles only; left out in "
                        f"{passes.ENGINE_NAMES.get(engine, engine)})")
-    return {"tree": ours, "replaced": replaced, "curve": curve, "changes": changes, "skipped": skipped}
+    return {"tree": ours, "replaced": replaced, "changes": changes, "skipped": skipped}
 
 
 def rendered_layer(scene):

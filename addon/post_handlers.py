@@ -1,48 +1,70 @@
-"""Save and render start keep every scene's post tree current: the exposure's white, the
-denoiser the tree was built for, and the god rays' sun keys (sun_keys.refresh, which steps the
-frames only when what the keys depend on changed)."""
+"""Keep every scene's post tree built for the engine and denoiser it renders with.
+
+The sun's place and the display white follow the scene through drivers (sun_screen.py), so
+nothing here steps a frame. A tree built for another engine or denoiser, or by an older Sandscape
+that keyed the sun, is rebuilt when the scene changes (never while a render runs) and on save;
+drivers Blender set aside while a scene had no camera are re-armed once it has one.
+"""
 
 import bpy
 from bpy.app.handlers import persistent
 
-from . import atmosphere, post, shot, sun_keys
+from . import atmosphere, post, sun_screen
 from . import ownership as own
 
 
-def refresh_sun_keys(scene):
-    """Re-key the sun when what the camera sees of it changed; True when the keys were rewritten."""
+def stale(scene):
+    """The scene's tree wants rebuilding: another engine or denoiser, or sun keys from before the
+    drivers (god rays on, no Sun Place node)."""
+    if post.stale_for_denoiser(scene):
+        return True
     tree = own.scene_compositor(scene)
-    if tree is None or sun_keys.rays_node(tree) is None or sun_keys.sun_key_node(tree) is None:
-        return False
-    white = own.node(tree, post.WHITE)
-    if white is not None:  # the exposure may have changed since the tree was built
-        white.outputs[0].default_value = post.display_white(scene)
-    sun = atmosphere.scene_sun(scene)
-    if sun is None or shot.scene_camera(scene) is None:
-        return False
-    return sun_keys.refresh(tree, scene, sun, tree.get("fade", 0.25))
+    return (tree is not None and scene.compositing_node_group == tree
+            and sun_screen.rays_node(tree) is not None and own.node(tree, sun_screen.PLACE) is None)
+
+
+def refresh(scenes):
+    """Rebuild the stale trees of these scenes, and point the sun drivers at the scene's sun where
+    it is another now; how many trees changed."""
+    changed = 0
+    for scene in scenes:
+        if scene.library is not None:
+            continue
+        if stale(scene):
+            post.apply_post_effects(scene, scene.sandscape_post, rebuild_only=True)
+            changed += 1
+            continue
+        tree = own.scene_compositor(scene)
+        if tree is None or sun_screen.rays_node(tree) is None:
+            continue
+        sun = atmosphere.scene_sun(scene)
+        if sun_screen.driven_sun(tree) != sun:
+            sun_screen.attach(tree, scene, sun)
+            changed += 1
+    return changed
 
 
 @persistent
-def refresh_all(*_):
-    for scene in bpy.data.scenes:
-        if scene.library is None:
-            if post.stale_for_denoiser(scene):
-                post.apply_post_effects(scene, scene.sandscape_post, rebuild_only=True)  # keys the sun too
-            else:
-                refresh_sun_keys(scene)
+def _on_save(*_):
+    refresh(bpy.data.scenes)
 
 
-HANDLERS = (bpy.app.handlers.save_pre, bpy.app.handlers.render_init)
+@persistent
+def _on_update(scene, _depsgraph=None):
+    if not bpy.app.is_job_running("RENDER"):
+        refresh([scene])
+        sun_screen.rearm([scene])
 
 
 def register():
-    for handlers in HANDLERS:
-        if refresh_all not in handlers:
-            handlers.append(refresh_all)
+    if _on_save not in bpy.app.handlers.save_pre:
+        bpy.app.handlers.save_pre.append(_on_save)
+    if _on_update not in bpy.app.handlers.depsgraph_update_post:
+        bpy.app.handlers.depsgraph_update_post.append(_on_update)
 
 
 def unregister():
-    for handlers in HANDLERS:
-        if refresh_all in handlers:
-            handlers.remove(refresh_all)
+    if _on_save in bpy.app.handlers.save_pre:
+        bpy.app.handlers.save_pre.remove(_on_save)
+    if _on_update in bpy.app.handlers.depsgraph_update_post:
+        bpy.app.handlers.depsgraph_update_post.remove(_on_update)

@@ -16,6 +16,7 @@ import math
 import bpy
 from bpy.app.handlers import persistent
 
+from . import drivers
 from . import ownership as own
 
 SOCKETS = ("Pixel Angle", "Pixel Size")
@@ -37,21 +38,12 @@ def attach(node, scene):
     """Drive the node's Pixel Angle and Pixel Size from the scene's camera (inputs the artist
     linked are left alone). Returns the number of inputs driven."""
     driven = 0
+    variables = [(name, "SCENE", scene, path) for name, path in VARIABLES.items()]
     for name, expression in EXPRESSIONS.items():
         socket = node.inputs.get(name)
         if socket is None or socket.is_linked:
             continue
-        driver = socket.driver_add("default_value").driver
-        driver.type = "SCRIPTED"
-        while driver.variables:
-            driver.variables.remove(driver.variables[0])
-        for variable_name, path in VARIABLES.items():
-            variable = driver.variables.new()
-            variable.name, variable.type = variable_name, "SINGLE_PROP"
-            target = variable.targets[0]
-            target.id_type, target.id, target.data_path = "SCENE", scene, path
-        driver.expression = expression
-        driver.is_valid = True
+        drivers.drive(socket, "default_value", expression, variables)
         driven += 1
     return driven
 
@@ -59,23 +51,14 @@ def attach(node, scene):
 def rearm(scenes=None):
     """Re-enable our sparkle drivers that Blender marked invalid while their scene had no camera,
     where it has one now. Returns how many were re-armed."""
-    rearmed = 0
     expressions = set(EXPRESSIONS.values())
-    for material in bpy.data.materials:
-        tree = material.node_tree
-        if material.get(own.MATERIAL_KEY) != own.SAND or tree is None or tree.animation_data is None:
-            continue
-        for curve in tree.animation_data.drivers:
-            driver = curve.driver
-            if driver.is_valid or driver.expression not in expressions or not driver.variables:
-                continue
-            scene = driver.variables[0].targets[0].id
-            if scene is None or scene.camera is None or (scenes is not None and scene not in scenes):
-                continue
-            driver.expression = driver.expression  # an edit rebuilds its relations
-            driver.is_valid = True
-            rearmed += 1
-    return rearmed
+
+    def ready(scene):
+        return scene is not None and scene.camera is not None and (scenes is None or scene in scenes)
+
+    return sum(drivers.rearm(material.node_tree.animation_data, expressions, ready)
+               for material in bpy.data.materials
+               if material.get(own.MATERIAL_KEY) == own.SAND and material.node_tree is not None)
 
 
 @persistent

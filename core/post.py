@@ -157,6 +157,9 @@ def _pixel_uv(image):
     return u, v
 
 
+FRONT_EPSILON = 1e-9  # the sun is in front of the camera when its camera-space z is below minus this
+
+
 def screen_position(view_projection, direction):
     """Normalised screen position (u, v) of a direction at infinity, and whether it is in front.
 
@@ -167,6 +170,23 @@ def screen_position(view_projection, direction):
     if w <= 1e-12:
         return (np.nan, np.nan), False
     return ((clip[0] / w + 1.0) / 2.0, (clip[1] / w + 1.0) / 2.0), True
+
+
+def sun_on_screen(direction, scale, shift, perspective, fade=0.25):
+    """(u, v, intensity) of the sun for Sandscape Sun Screen (its twin).
+
+    direction: the sun's direction in camera space (the camera looks down -Z); scale: the
+    screen widths and heights one unit of x / -z and y / -z spans; shift: the camera's shift
+    in the same units; perspective: 1 for a perspective camera (anything else gives no rays).
+    """
+    x, y, z = (float(c) for c in direction)
+    in_front = perspective > 0.5 and z < -FRONT_EPSILON
+    if not in_front:
+        return 0.5, 0.5, 0.0
+    depth = min(z, -FRONT_EPSILON)
+    u = 0.5 + x / -depth * scale[0] - shift[0]
+    v = 0.5 + y / -depth * scale[1] - shift[1]
+    return u, v, sun_intensity((u, v), True, fade)
 
 
 def sun_intensity(sun_uv, in_front, fade=0.25):

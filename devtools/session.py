@@ -4,6 +4,7 @@ installed the way Blender installs extensions (a local repository holding it).
 isolate() must run before the first `import bpy`.
 """
 
+import contextlib
 import os
 import pathlib
 import tempfile
@@ -64,3 +65,20 @@ def start():
     import bpy  # noqa: F401 (after isolate, before the extension)
 
     return install_dev_extension(root)
+
+
+@contextlib.contextmanager
+def extension_off():
+    """Sandscape disabled and Python auto-run off, as on a render farm without the extension."""
+    import addon_utils
+    import bpy
+
+    preferences = bpy.context.preferences.filepaths
+    addon_utils.disable(MODULE, default_set=True)
+    preferences.use_scripts_auto_execute = False
+    try:
+        assert not hasattr(bpy.types, "SANDSCAPE_OT_paint_footprints")
+        yield
+    finally:
+        preferences.use_scripts_auto_execute = True
+        addon_utils.enable(MODULE, default_set=True)

@@ -23,6 +23,7 @@ from . import (
     region_cut,
     ripples,
     sand_normal,
+    sun_place,
     weather_map,
 )
 
@@ -45,6 +46,7 @@ GROUPS = (
     (weather_map.GEOMETRY, "Clouds"),
     (gated_blur, "Post Effects"),
     (god_rays, "Post Effects"),
+    (sun_place, "Post Effects"),
     (region_cut, None),
     (print_markers, None),
 )

@@ -54,8 +54,8 @@ class SANDSCAPE_OT_add_post_effects(SandscapeOperator, bpy.types.Operator):
                     ("gated blur", settings.use_blur), ("god rays", settings.use_god_rays))
         effects = [name for name, on in switches if on] or ["none"]
         line = f"Post effects in {passes.ENGINE_NAMES[scene.render.engine]}: {', '.join(effects)}"
-        if done["curve"]:
-            line += f" (the sun's place on screen keyed on {len(done['curve'])} frames)"
+        if settings.use_god_rays and done["tree"] is not None:
+            line += " (the sun's place on screen follows the camera and the sun on every frame)"
         kept_denoiser = settings.use_denoise and post.route(scene, settings).endswith(" denoised")
         if done["tree"] is not None and kept_denoiser:
             line += "; Cycles' own denoising kept (the sparkles come from its Noisy Image)"

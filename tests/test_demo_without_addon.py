@@ -1,10 +1,8 @@
 """A .blend Sandscape writes renders the same with the extension disabled and Python auto-run off,
 on the Blender that wrote it and on the other supported one."""
 
-import contextlib
 import pathlib
 
-import addon_utils
 import bpy
 import numpy as np
 
@@ -27,20 +25,6 @@ def small_render(scene):
     scene.cycles.samples = 2
     scene.frame_set(FRAME)
     return readback.render(scene)
-
-
-@contextlib.contextmanager
-def extension_off():
-    """Sandscape disabled and Python auto-run off, as on a render farm without the extension."""
-    preferences = bpy.context.preferences.filepaths
-    addon_utils.disable(session.MODULE, default_set=True)
-    preferences.use_scripts_auto_execute = False
-    try:
-        assert not hasattr(bpy.types, "SANDSCAPE_OT_paint_footprints")
-        yield
-    finally:
-        preferences.use_scripts_auto_execute = True
-        addon_utils.enable(session.MODULE, default_set=True)
 
 
 def node_trees():
@@ -100,7 +84,7 @@ def test_demo_renders_identically_without_the_extension(demo_scene, tmp_path):
     path = tmp_path / "demo.blend"
     bpy.ops.wm.save_as_mainfile(filepath=str(path), compress=True)
     with_addon = small_render(bpy.context.scene)
-    with extension_off():
+    with session.extension_off():
         bpy.ops.wm.open_mainfile(filepath=str(path), load_ui=False)
         without = small_render(bpy.context.scene)
     assert np.isfinite(without).all()
@@ -111,7 +95,7 @@ def test_committed_demo_opens_and_renders_on_this_blender(demo_files):
     """demo.blend, saved by the default Blender, opens here with the extension off and loses nothing."""
     bpy.ops.wm.open_mainfile(filepath=str(demo_files["built"]), load_ui=False)  # this run's fresh build
     fresh, fresh_links = small_render(bpy.context.scene), links()
-    with extension_off():
+    with session.extension_off():
         bpy.ops.wm.open_mainfile(filepath=str(REPO / "demo.blend"), load_ui=False)
         problems = open_problems()
         committed_links = links()

@@ -101,5 +101,5 @@ def test_dark_glints_idle_rays_and_bounces(sandscape, wasteful_demo):
     material = terrain.active_material
     output = next(n for n in material.node_tree.nodes if n.bl_idname == "ShaderNodeOutputMaterial")
     assert output.inputs["Surface"].links[0].from_node == sandscape.addon.sand.look_node(material)
-    assert sandscape.addon.sun_keys.rays_node(scene.compositing_node_group) is None
+    assert sandscape.addon.sun_screen.rays_node(scene.compositing_node_group) is None
     assert scene.cycles.volume_bounces == 0

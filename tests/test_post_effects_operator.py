@@ -34,19 +34,13 @@ def tree_groups(tree):
     return {node.node_tree.get("sandscape_group") for node in tree.nodes if getattr(node, "node_tree", None)}
 
 
-def test_intensity_fades_continuously_and_is_zero_behind(desert):
+def test_intensity_fades_continuously_and_is_zero_behind(desert, sandscape):
     settings = desert.sandscape_post
     settings.use_blur = False
     bpy.ops.sandscape.add_post_effects()
-    fcurves = desert.compositing_node_group.animation_data.action
-    assert fcurves is not None
     tree = desert.compositing_node_group
-    rays = next(n for n in tree.nodes if n.label == "God Rays")
-    curve = []
-    for frame in range(1, LAST + 1):
-        desert.frame_set(frame)
-        curve.append(rays.inputs["Intensity"].default_value)
-    curve = np.array(curve)
+    assert tree.animation_data.action is None and len(tree.animation_data.drivers) > 0  # no keys
+    curve = np.array(sandscape.addon.sun_screen.driven_curve(tree, desert))[:, 3]
     # Facing the sun, then facing away (the sun behind the camera).
     assert curve[0] == pytest.approx(1.0, abs=1e-6) and curve[-1] == pytest.approx(0.0, abs=1e-6)
     assert (np.diff(curve) <= 1e-9).all()  # fades out as the sun leaves the frame, never back
@@ -85,7 +79,7 @@ def test_switched_off_effects_are_absent(desert, sandscape):
     assert tree_groups(tree) == {"Sandscape Gated Blur"}
     settings.use_blur, settings.use_god_rays = False, True
     bpy.ops.sandscape.add_post_effects()
-    assert tree_groups(tree) == {"Sandscape God Rays"}
+    assert tree_groups(tree) == {"Sandscape God Rays", "Sandscape Sun Place"}
     settings.use_god_rays = False
     bpy.ops.sandscape.add_post_effects()
     assert desert.compositing_node_group is None

@@ -39,7 +39,7 @@ def test_preset_sets_its_settings(sandscape, name):
     assert tree is not None and scene.compositing_node_group == tree
     assert sandscape.addon.ownership.node(tree, sandscape.addon.post.DENOISE) is not None
     # A scene without post effects gets only the denoising: no god rays without a sun.
-    assert sandscape.addon.sun_keys.rays_node(tree) is None
+    assert sandscape.addon.sun_screen.rays_node(tree) is None
     layer = scene.view_layers[0]
     assert layer.cycles.denoising_store_passes and layer.use_pass_glossy_direct
     assert any(aov.name == sandscape.addon.post.GLINT_AOV for aov in layer.aovs)

@@ -8,7 +8,7 @@ import bpy
 import numpy as np
 import pytest
 
-from devtools import operators, readback, scenes
+from devtools import operators, readback, scenes, session
 
 
 def ours(collection, kind, scene=None):
@@ -168,38 +168,46 @@ def test_post_effects_keep_the_renders_alpha(lit_scene):
 
 
 def test_god_rays_follow_a_camera_turned_after_add_post_effects(lit_scene, sandscape):
-    keys = sandscape.addon.sun_keys
+    """No save, no handler: the render's own drivers place the rays where the sun now is."""
+    screen = sandscape.addon.sun_screen
     lit_scene.sandscape_post.use_blur = lit_scene.sandscape_post.use_denoise = False
     lit_scene.frame_start = lit_scene.frame_end = 1
     bpy.ops.sandscape.add_post_effects()
-    tree = lit_scene.compositing_node_group
+    before = screen.driven_place(lit_scene.compositing_node_group, lit_scene)
     lit_scene.camera.rotation_euler[2] += math.radians(20)  # the sun moves across the frame
     bpy.context.view_layer.update()
     sun = sandscape.addon.atmosphere.scene_sun(lit_scene)
-    expected = keys.sun_curve(lit_scene, sun, 0.25)
-    assert abs(keys.keyed_curve(tree)[0][1] - expected[0][1]) > 0.1  # stale until saved or rendered
+    _, u, v, _ = screen.stepped_curve(lit_scene, sun, 0.25)[0]
+    assert abs(before[0] - u) > 0.1
     readback.cycles_scene(lit_scene, resolution=(64, 36), samples=1)
-    with_rays = readback.render(lit_scene)  # render start re-keys the sun
-    assert np.abs(np.array(keys.keyed_curve(tree)) - keys.sun_curve(lit_scene, sun, 0.25)).max() <= 1e-6
+    with_rays = readback.render(lit_scene)
     lit_scene.render.use_compositing = False
     rays = (with_rays - readback.render(lit_scene))[..., :3].sum(-1)
     # The glow is brightest at the sun's new place on screen (column, row from the bottom).
     row, col = np.unravel_index(np.argmax(rays), rays.shape)
-    _, u, v, _ = expected[0]
     assert abs((col + 0.5) / 64 - u) < 0.1 and abs((row + 0.5) / 36 - v) < 0.1
 
 
-def test_saving_re_keys_the_sun(lit_scene, sandscape, tmp_path):
-    keys = sandscape.addon.sun_keys
+def test_a_saved_file_places_the_sun_where_it_is(lit_scene, sandscape, tmp_path):
+    """A longer lens and another frame size after Add Post Effects, the file saved and opened
+    again with Sandscape off: its drivers give Blender's own projection."""
+    screen = sandscape.addon.sun_screen
     lit_scene.sandscape_post.use_blur = False
     lit_scene.frame_start, lit_scene.frame_end = 1, 5
     bpy.ops.sandscape.add_post_effects()
     lit_scene.camera.data.lens = 80  # a longer lens moves the sun away from the centre
+    lit_scene.camera.rotation_euler[0] = math.radians(95)  # looking 5 degrees up: the sun at the top
     lit_scene.render.resolution_x, lit_scene.render.resolution_y = 300, 100
-    bpy.ops.wm.save_as_mainfile(filepath=str(tmp_path / "keys.blend"))
+    path = tmp_path / "drivers.blend"
+    bpy.ops.wm.save_as_mainfile(filepath=str(path))
     sun = sandscape.addon.atmosphere.scene_sun(lit_scene)
-    keyed = np.array(keys.keyed_curve(lit_scene.compositing_node_group))
-    assert np.abs(keyed - keys.sun_curve(lit_scene, sun, 0.25)).max() <= 1e-6
+    expected = np.array(screen.stepped_curve(lit_scene, sun, 0.25))
+    with session.extension_off():
+        bpy.ops.wm.open_mainfile(filepath=str(path), load_ui=False)
+        scene = bpy.context.scene
+        driven = np.array(screen.driven_curve(scene.compositing_node_group, scene))
+    assert np.abs(driven - expected).max() <= 2e-5
+    assert 0 < expected[:, 3].max() and np.ptp(expected[:, 1]) == 0.0
 
 
 # ---------------------------------------------------------------- painting after changes

@@ -1,0 +1,46 @@
+"""Simple-expression drivers: the one way Sandscape makes a value follow the scene without a
+handler. Blender evaluates them without Python, so a farm with the extension off and Python
+auto-run off renders them the same.
+
+A driver whose target could not be resolved once (a scene without a camera, a deleted sun) is
+marked invalid and Blender skips it until the file is reloaded or the driver edited; rearm()
+re-enables ours once their targets are there again.
+"""
+
+
+def drive(owner, path, expression, variables, index=-1):
+    """Drive owner.path (index: one element of an array) by a simple expression.
+
+    variables: (name, id_type, id, data_path) each; the driver's old variables are replaced.
+    """
+    curve = owner.driver_add(path, index) if index >= 0 else owner.driver_add(path)
+    driver = curve.driver
+    driver.type = "SCRIPTED"
+    while driver.variables:
+        driver.variables.remove(driver.variables[0])
+    for name, id_type, target_id, data_path in variables:
+        variable = driver.variables.new()
+        variable.name, variable.type = name, "SINGLE_PROP"
+        target = variable.targets[0]
+        target.id_type, target.id, target.data_path = id_type, target_id, data_path
+    driver.expression = expression
+    driver.is_valid = True
+    return driver
+
+
+def rearm(animation_data, expressions, ready):
+    """Re-enable the invalid drivers of animation_data whose expression is one of ours and whose
+    first target `ready(id)` says can be read now. Returns how many."""
+    if animation_data is None:
+        return 0
+    rearmed = 0
+    for curve in animation_data.drivers:
+        driver = curve.driver
+        if driver.is_valid or driver.expression not in expressions or not driver.variables:
+            continue
+        if not ready(driver.variables[0].targets[0].id):
+            continue
+        driver.expression = driver.expression  # an edit rebuilds its relations
+        driver.is_valid = True
+        rearmed += 1
+    return rearmed
