@@ -203,7 +203,7 @@ def test_shift_a_offers_sandscape(sandscape):
                         "Sandscape Glint Cells",
                         "Sandscape Sand Normal", "Sandscape Ripples", "Sandscape Cloud Density",
                         "Sandscape Weather Map"}),
-    ("CompositorNodeTree", {"Sandscape Gated Blur", "Sandscape God Rays"}),
+    ("CompositorNodeTree", {"Sandscape Gated Blur", "Sandscape God Rays", "Sandscape Sun Place"}),
     ("GeometryNodeTree", {"Sandscape Cloud Density Field", "Sandscape Weather Map Field"}),
 ])
 def test_node_editors_add_menus_list_our_groups(sandscape, tree_type, expected):
