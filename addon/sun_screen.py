@@ -36,14 +36,16 @@ def _dot(name, cross):
 # camera's matrix with its axes at unit length, as Blender renders it (Cramer's rule, so a
 # sheared camera under a stretched, turned parent comes out right too).
 _DETERMINANT = _dot("x", _cross("y", "z"))
+# A degenerate camera (no camera: every variable 0) divides by 1, not by 0, so the console stays quiet.
 _IN_CAMERA = {axis: f"({_dot('s', _cross(*others))})*sqrt({axis}a*{axis}a+{axis}b*{axis}b+{axis}c*{axis}c)"
-                    f"/({_DETERMINANT})"
+                    f"/({_DETERMINANT} if {_DETERMINANT}!=0 else 1)"
               for axis, others in (("x", "yz"), ("y", "zx"), ("z", "xy"))}
 # The sensor fit's span in pixels (pixel aspect applied), as Blender fits the sensor.
 _SPAN = "((f==0)*max(rx*ax,ry*ay)+(f==1)*rx*ax+(f==2)*ry*ay)"
 EXPRESSIONS = {
     (DIRECTION, "X"): _IN_CAMERA["x"], (DIRECTION, "Y"): _IN_CAMERA["y"], (DIRECTION, "Z"): _IN_CAMERA["z"],
-    (LENS, "X"): f"{_SPAN}/(rx*ax)/2/tan(t/2)", (LENS, "Y"): f"{_SPAN}/(ry*ay)/2/tan(t/2)",
+    (LENS, "X"): f"{_SPAN}/(rx*ax)/2/max(tan(t/2),1e-9)",
+    (LENS, "Y"): f"{_SPAN}/(ry*ay)/2/max(tan(t/2),1e-9)",
     (SHIFT, "X"): f"sx*{_SPAN}/(rx*ax)", (SHIFT, "Y"): f"sy*{_SPAN}/(ry*ay)",
     (PLACE, "Perspective"): "k==0",
 }

@@ -73,7 +73,8 @@ def main(argv=None):
     flags = [f"--frames {args.frames}"] if args.frames != 1000 else []
     lines = [results.heading("Save and update cost", flags),
              f"{results.machine()}. devtools/scenes.long_keyed_shot: {args.frames} frames, a dolly camera "
-             f"aimed at a keyed target, the god rays' sun driven, one animated modifier. Median of {REPEATS}.\n",
+             f"aimed at a keyed target, the god rays' sun driven, one animated modifier. "
+             f"Median of {REPEATS}.\n",
              "| what | ms |", "|---|---|"]
     lines += [f"| {name} | {seconds * 1000:.1f} |" for name, seconds in rows]
     lines.append(f"\nAdded to a save: {(unchanged - plain) * 1000:.1f} ms; to a scene update: "
