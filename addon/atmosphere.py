@@ -18,7 +18,7 @@ from ..core import sun as sky_sun
 from ..core.clouds import layer_region as holding_region
 from ..node_groups import dust_field, dust_volume
 from ..node_groups import helper as h
-from . import evaluation, sand, shot, units
+from . import drivers, evaluation, sand, shot, units
 from . import ownership as own
 from .sun_lamp import ensure_sun, is_ours, scene_sun  # noqa: F401 (the atmosphere's API)
 
@@ -113,15 +113,38 @@ def _follow(sky, sun):
     elevation = "asin(min(max(z / max(sqrt(x * x + y * y + z * z), 1e-12), -1), 1))"
     for name, expression, axes in (("sun_elevation", elevation, "xyz"),
                                    ("sun_rotation", "atan2(x, y) + (2 * pi if x < 0 else 0)", "xy")):
-        driver = sky.driver_add(name).driver
-        driver.type = "SCRIPTED"
-        for axis in axes:
-            variable = driver.variables.new()
-            variable.name, variable.type = axis, "SINGLE_PROP"
-            variable.targets[0].id_type = "OBJECT"
-            variable.targets[0].id = sun
-            variable.targets[0].data_path = f"matrix_world[2][{'xyz'.index(axis)}]"
-        driver.expression = expression
+        drivers.drive(sky, name, expression,
+                      [(axis, "OBJECT", sun, f"matrix_world[2][{'xyz'.index(axis)}]") for axis in axes])
+
+
+def followed_sun(sky):
+    """The sun whose axis the sky's drivers follow, or None."""
+    tree = sky.id_data
+    path = sky.path_from_id("sun_elevation")
+    for curve in tree.animation_data.drivers if tree.animation_data is not None else ():
+        if curve.data_path == path and curve.driver.variables:
+            return curve.driver.variables[0].targets[0].id
+    return None
+
+
+def follow_scene_sun(scene):
+    """Point our sky at the artist's sun where it is another now (theirs deleted and a new one
+    added, or ours replaced by theirs); True when the sky's drivers changed."""
+    world = own.scene_world(scene)
+    if world is None or world.node_tree is None:
+        return False
+    skies = [n for n in world.node_tree.nodes if n.bl_idname == "ShaderNodeTexSky"]
+    if not skies:
+        return False
+    sun = scene_sun(scene)
+    if sun is None or is_ours(sun):
+        return False
+    changed = False
+    for sky in skies:
+        if followed_sun(sky) != sun:
+            _follow(sky, sun)
+            changed = True
+    return changed
 
 
 def scene_bounds(scene, margin):

@@ -1,9 +1,11 @@
-"""Keep every scene's post tree built for the engine and denoiser it renders with.
+"""Keep every scene's post tree built for the engine and denoiser it renders with, and its
+sky and rays on the scene's sun.
 
 The sun's place and the display white follow the scene through drivers (sun_screen.py), so
 nothing here steps a frame. A tree built for another engine or denoiser, or by an older Sandscape
 that keyed the sun, is rebuilt when the scene changes (never while a render runs) and on save;
-drivers Blender set aside while a scene had no camera are re-armed once it has one.
+drivers Blender set aside while a scene had no camera are re-armed once it has one; a sun the
+artist swapped in is followed by the sky and the rays.
 """
 
 import bpy
@@ -47,6 +49,9 @@ def refresh(scenes):
 @persistent
 def _on_save(*_):
     refresh(bpy.data.scenes)
+    for scene in bpy.data.scenes:
+        if scene.library is None:
+            atmosphere.follow_scene_sun(scene)
 
 
 @persistent
@@ -54,6 +59,7 @@ def _on_update(scene, _depsgraph=None):
     if not bpy.app.is_job_running("RENDER"):
         refresh([scene])
         sun_screen.rearm([scene])
+        atmosphere.follow_scene_sun(scene)
 
 
 def register():

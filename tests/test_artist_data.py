@@ -106,6 +106,27 @@ def test_the_sky_follows_a_sun_your_keys_move_and_aiming_leaves_it_alone():
     assert len(drivers) == 4 and all(d.driver.is_simple_expression for d in drivers)
 
 
+def test_the_sky_and_the_rays_follow_a_sun_you_swap_in(sandscape):
+    """Found by an artist-eye check: the artist's sun deleted and another added after Add
+    Atmosphere and Add Post Effects; the god rays moved to the new one, the sky's sun stayed."""
+    scene = ground()
+    first = artists_sun()
+    operators.run_execute("sandscape.add_atmosphere")
+    scene.sandscape_post.use_blur = scene.sandscape_post.use_denoise = False
+    operators.run_execute("sandscape.add_post_effects")
+    bpy.data.objects.remove(first)
+    second = bpy.data.objects.new("New Sun", bpy.data.lights.new("New Sun", "SUN"))
+    second.rotation_euler = (math.radians(90.0 - 8.0), 0.0, math.radians(180.0 + 12.0))
+    scene.collection.objects.link(second)
+    bpy.context.view_layer.update()  # the next scene update, as the viewport makes
+    scene.frame_set(scene.frame_current)  # drivers evaluated on their new target
+    elevation, azimuth = direction(second)
+    assert sky_sun_degrees(scene) == {(round(elevation, 3), round(azimuth, 3))}
+    assert sandscape.addon.sun_screen.driven_sun(scene.compositing_node_group) == second
+    drivers = scene.world.node_tree.animation_data.drivers
+    assert all(d.driver.is_valid and d.driver.variables[0].targets[0].id == second for d in drivers)
+
+
 def test_set_exposure_measures_your_own_lamp():
     """An artist's sun at strength 4 under their own world: the exposure is for that lamp (their
     world's light is not known and left out), not for the sky model's sun, forty times brighter."""
