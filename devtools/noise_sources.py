@@ -8,7 +8,6 @@ Run: .venv/bin/python devtools/noise_sources.py [--frame 120] [--samples 128]
 """
 
 import argparse
-import importlib
 import pathlib
 import sys
 import time
@@ -26,21 +25,12 @@ def main(argv=None):
     parser.add_argument("--frame", type=int, default=120)
     parser.add_argument("--samples", type=int, default=128, help="samples of each seed's render")
     args = parser.parse_args(argv)
-    root = session.isolate()
-    import bpy
-
-    session.install_dev_extension(root)
-    presets = importlib.import_module(f"{session.MODULE}.addon.presets")
-    sand = importlib.import_module(f"{session.MODULE}.addon.sand")
-    own = importlib.import_module(f"{session.MODULE}.addon.ownership")
+    sandscape, scene = session.demo_scene()
+    presets, sand, own = sandscape.addon.presets, sandscape.addon.sand, sandscape.addon.ownership
     import quality  # its resolution and light paths: the reference's
 
     from devtools import readback
 
-    session.reset()
-    bpy.ops.sandscape.build_demo_scene()
-    scene = bpy.context.scene
-    scene.render.resolution_percentage = 100
     scene.render.resolution_x, scene.render.resolution_y = quality.RESOLUTION
     scene.frame_set(args.frame)
     white = 2.0 ** -scene.view_settings.exposure

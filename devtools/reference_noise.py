@@ -8,7 +8,6 @@ Run: .venv/bin/python devtools/reference_noise.py [--frame 120] [--samples 512]
 """
 
 import argparse
-import importlib
 import pathlib
 import sys
 import time
@@ -26,20 +25,12 @@ def main(argv=None):
     parser.add_argument("--frame", type=int, default=120)
     parser.add_argument("--samples", type=int, default=512, help="samples of each half")
     args = parser.parse_args(argv)
-    root = session.isolate()
-    import bpy
-
-    session.install_dev_extension(root)
-    presets = importlib.import_module(f"{session.MODULE}.addon.presets")
-    sand = importlib.import_module(f"{session.MODULE}.addon.sand")
+    sandscape, scene = session.demo_scene()
+    presets, sand = sandscape.addon.presets, sandscape.addon.sand
     import quality
 
     from devtools import readback
 
-    session.reset()
-    bpy.ops.sandscape.build_demo_scene()
-    scene = bpy.context.scene
-    scene.render.resolution_percentage = 100
     material = sand.find_sand_material(scene.sandscape_footprints.terrain)
     halves = {}
     for label in ("glints", "no glints"):

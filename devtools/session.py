@@ -67,6 +67,18 @@ def start():
     return install_dev_extension(root)
 
 
+def demo_scene():
+    """A bench's session with the desert demo built in it: (the package, its scene at 100 %)."""
+    sandscape = start()
+    import bpy
+
+    reset()
+    bpy.ops.sandscape.build_demo_scene()
+    scene = bpy.context.scene
+    scene.render.resolution_percentage = 100
+    return sandscape, scene
+
+
 @contextlib.contextmanager
 def extension_off():
     """Sandscape disabled and Python auto-run off, as on a render farm without the extension."""
