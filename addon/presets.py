@@ -15,10 +15,12 @@ BLENDER_DEFAULTS = {
 
 # Chosen from the time-versus-error curves of bench/quality.py; the figures are in the README
 # ("Quality presets") and bench/RESULTS.md ("Quality"), not here, where they would drift. Why each
-# part: ray-marched volumes with the tree's denoising of all but the glints lie lowest until their
-# step bias takes over (Final: step rate 0.25); unbiased volumes pay a fixed majorant-grid cost per
-# render; volume bounces are for clouds, whose light grows with bounces up to about 128
-# (bench/clouds.py), and the total cap (max_bounces) must let them run.
+# part: ray-marched volumes with the tree's denoising of all but the glints lie lowest at few
+# samples; past them their step bias takes over, and unbiased volumes, which pay a fixed
+# majorant-grid cost per render, with adaptive sampling and Cycles' denoiser (the tree then takes
+# the sparkles from its noisy image) lie lowest (Final); volume bounces are for clouds, whose light
+# grows with bounces up to about 128 (bench/clouds.py), and the total cap (max_bounces) must let
+# them run.
 _RAW_RAY_MARCHED = {"use_adaptive_sampling": False, "adaptive_threshold": 0.0, "use_denoising": False,
                     "volume_biased": True, "volume_step_rate": 1.0, "dicing_rate": 1.0,
                     "sampling_pattern": "AUTOMATIC"}
@@ -30,7 +32,12 @@ def _preset(samples, volume_bounces, step_rate=1.0, denoise=True):
 
 
 DENOISE = "denoise_but_glints"  # not a Cycles setting: the post-effects tree's denoising
-PRESETS = {"DRAFT": _preset(16, 16), "PREVIEW": _preset(72, 64), "FINAL": _preset(256, 128, step_rate=0.25)}
+_UNBIASED_ADAPTIVE = {"use_adaptive_sampling": True, "adaptive_threshold": 0.01, "use_denoising": True,
+                      "volume_biased": False, "volume_step_rate": 1.0, "dicing_rate": 1.0,
+                      "sampling_pattern": "AUTOMATIC"}
+PRESETS = {"DRAFT": _preset(16, 16), "PREVIEW": _preset(72, 64),
+           "FINAL": {"samples": 512, **_UNBIASED_ADAPTIVE, "volume_bounces": 128, "max_bounces": 128,
+                     DENOISE: True}}
 
 
 def apply(scene, settings):

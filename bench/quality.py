@@ -37,6 +37,11 @@ NOISE_RESOLUTION, NOISE_FRAME = (320, 180), 160
 # The sigma is seeds 0 and 1. A few one-pixel sparkles hold much of it, so one pair can be
 # lucky by 5-10 %: the mean over the pairs of four seeds is the steadier figure.
 NOISE_SEEDS = (0, 1, 2, 3)
+# The reference's halves: never seed 0, which every render under test uses. A half sharing its
+# sample pattern with the render it grades agreed with it beyond its error: the rows of this bench
+# before 2026-11-25 16:30 had that flaw, mildly at 16-64 spp, wholly at 512 (a 512-spp preset
+# came out at RMSE 0 against a 512-spp half of the same seed).
+REFERENCE_SEEDS = (1000, 1001)
 
 
 def render(readback, scene, settings, presets, seed=0):
@@ -162,7 +167,7 @@ def reference_halves(readback, scene, presets, frame, reference_spp):
     scene.frame_set(frame)
     base = dict(presets.BLENDER_DEFAULTS, **LIGHT_PATHS, samples=reference_spp // 2,
                 use_adaptive_sampling=False, use_denoising=False)
-    halves = [render(readback, scene, base, presets, seed=seed)[1] for seed in (0, 1)]
+    halves = [render(readback, scene, base, presets, seed=seed)[1] for seed in REFERENCE_SEEDS]
     return *halves, 2.0 ** -scene.view_settings.exposure
 
 
