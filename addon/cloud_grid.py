@@ -18,6 +18,7 @@ import bpy
 from ..core import clouds
 from ..node_groups import cloud_density, weather_map
 from ..node_groups import helper as h
+from . import drivers
 from . import ownership as own
 
 MODIFIER = "Sandscape Cloud Grid"
@@ -154,9 +155,7 @@ def drift_with_wind(layer, wind, fps):
         rate = float(wind[axis]) / fps
         layer.location[axis] = 0.0
         if rate != 0.0:
-            driver = layer.driver_add("location", axis).driver
-            driver.type = "SCRIPTED"
-            driver.expression = f"frame * {rate!r}"
+            drivers.drive(layer, "location", f"frame * {rate!r}", [], index=axis)
 
 
 def stop_drift(layer):

@@ -8,6 +8,8 @@ shown, it evaluates the wrong scene, and objects of the scene passed in come bac
 import bpy
 import numpy as np
 
+from . import drivers
+
 
 def scene_view_layer(scene):
     """The view layer worked on in this scene: the context's when it shows this scene, else the
@@ -62,7 +64,4 @@ def stepped_frames(scene, frames):
 def drive_by_frame(socket):
     """Drive a socket's value by the scene frame: a simple expression, which runs without Python
     auto-run (a farm, or a file opened with scripts off)."""
-    driver = socket.driver_add("default_value").driver
-    driver.type = "SCRIPTED"
-    driver.expression = "frame"
-    return driver
+    return drivers.drive(socket, "default_value", "frame", [])

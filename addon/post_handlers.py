@@ -26,12 +26,13 @@ def stale(scene):
 
 
 def refresh(scenes):
-    """Rebuild the stale trees of these scenes, and point the sun drivers at the scene's sun where
-    it is another now; how many trees changed."""
+    """Point the sky at the artist's sun where it is another now, rebuild the stale trees of these
+    scenes, and point the rays' drivers at the scene's sun; how many trees changed."""
     changed = 0
     for scene in scenes:
         if scene.library is not None:
             continue
+        atmosphere.follow_scene_sun(scene)
         if stale(scene):
             post.apply_post_effects(scene, scene.sandscape_post, rebuild_only=True)
             changed += 1
@@ -49,9 +50,6 @@ def refresh(scenes):
 @persistent
 def _on_save(*_):
     refresh(bpy.data.scenes)
-    for scene in bpy.data.scenes:
-        if scene.library is None:
-            atmosphere.follow_scene_sun(scene)
 
 
 @persistent
@@ -59,7 +57,6 @@ def _on_update(scene, _depsgraph=None):
     if not bpy.app.is_job_running("RENDER"):
         refresh([scene])
         sun_screen.rearm([scene])
-        atmosphere.follow_scene_sun(scene)
 
 
 def register():

@@ -13,7 +13,7 @@ import pytest
 from mathutils import Euler
 
 from core import post
-from devtools import scenes
+from devtools import readback, scenes
 
 TOLERANCE = 2e-5  # of a screen width: single-precision matrices and socket values
 
@@ -149,8 +149,6 @@ def test_the_sun_behind_the_camera_and_orthographic_cameras_give_no_rays(shot, s
 def test_the_sun_place_group_matches_its_twin(sandscape):
     """Directions all round the camera (behind it, beside it, on its plane), scales and shifts
     of any lens, perspective or not, and three fades."""
-    from devtools import readback
-
     group = sandscape.node_groups.helper.ensure_group(sandscape.node_groups.sun_place)
     width, height = 40, 30
     rng = np.random.default_rng(3)
