@@ -72,6 +72,7 @@ def main(argv=None):
          {"volume_bounces": 0, "diffuse_bounces": 0}),
     ]
     previous = None
+    table = []
     for label, change, extra in steps:
         change()
         started = time.perf_counter()
@@ -90,8 +91,17 @@ def main(argv=None):
         rows = np.nonzero(top)[0]
         print(f"    noisiest rows (0 = bottom of {squared.shape[0]}): median {np.median(rows):.0f}, "
               f"quartiles {np.quantile(rows, 0.25):.0f}-{np.quantile(rows, 0.75):.0f}", flush=True)
+        took = f"{np.sqrt(max(previous ** 2 - noise ** 2, 0.0)):.5f}" if previous is not None else "-"
+        table.append(f"| {label} | {noise:.5f} | {took} |")
         previous = noise
-
+    flags = [f"--frame {args.frame}"] * (args.frame != 120)
+    flags += [f"--samples {args.samples}"] * (args.samples != 128)
+    width, height = quality.RESOLUTION
+    results.publish([results.heading("Reference noise sources", flags),
+                     f"{results.machine()}. Demo frame {args.frame} at {width}x{height}, two seeds at "
+                     f"{args.samples} spp each, the quality reference's settings; noise = clipped RMSE of "
+                     "the pair's difference / 2; each row takes one more thing away.\n",
+                     "| render | noise | took away (quadrature) |", "|---|---|---|", *table])
 
 if __name__ == "__main__":
     main()
