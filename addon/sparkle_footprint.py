@@ -1,8 +1,9 @@
 """The render camera's pixel on the glint cells.
 
-Sandscape Glint Cells sizes its cells to a pixel's footprint; these drivers keep the glint
-group's Pixel Angle (perspective) and Pixel Size (orthographic) equal to what one pixel of the
-scene's active camera spans at the render resolution. They are simple expressions: a farm
+Sandscape Glint Cells sizes its cells to a pixel's footprint, and Sandscape Glint Splat puts each
+sparkle into its pixel; these drivers keep the glint group's Pixel Angle (perspective), Pixel Size
+(orthographic) and Resolution equal to what one pixel of the scene's active camera spans and to the
+render's pixels. They are simple expressions: a farm
 evaluates them with Python auto-run off, and they follow a new lens, resolution or camera.
 
 A driver evaluated while the scene had no camera is marked invalid and Blender skips it until
@@ -12,6 +13,7 @@ the scene has a camera (a check of our sand materials' drivers; nothing while a 
 """
 
 import math
+import re
 
 import bpy
 from bpy.app.handlers import persistent
@@ -19,13 +21,15 @@ from bpy.app.handlers import persistent
 from . import drivers
 from . import ownership as own
 
-SOCKETS = ("Pixel Angle", "Pixel Size")
+SOCKETS = ("Pixel Angle", "Pixel Size", "Resolution X", "Resolution Y")
 # The pixels the camera's angle (or orthographic scale) spans: the larger side when the sensor
 # fit is Auto, else the side it names.
 _SPAN = "((fit == 0) * max(rx, ry) + (fit == 1) * rx + (fit == 2) * ry) * pct / 100"
 EXPRESSIONS = {
     "Pixel Angle": f"(kind == 0) * 2 * tan(angle / 2) / ({_SPAN})",
     "Pixel Size": f"(kind == 1) * ortho / ({_SPAN})",
+    "Resolution X": "rx * pct / 100",
+    "Resolution Y": "ry * pct / 100",
 }
 VARIABLES = {  # name -> data path on the scene
     "kind": "camera.data.type", "fit": "camera.data.sensor_fit", "angle": "camera.data.angle",
@@ -35,7 +39,7 @@ VARIABLES = {  # name -> data path on the scene
 
 
 def attach(node, scene):
-    """Drive the node's Pixel Angle and Pixel Size from the scene's camera (inputs the artist
+    """Drive the node's Pixel Angle, Pixel Size and Resolution from the scene's camera (inputs the artist
     linked are left alone). Returns the number of inputs driven."""
     driven = 0
     variables = [(name, "SCENE", scene, path) for name, path in VARIABLES.items()]
@@ -43,7 +47,8 @@ def attach(node, scene):
         socket = node.inputs.get(name)
         if socket is None or socket.is_linked:
             continue
-        drivers.drive(socket, "default_value", expression, variables)
+        used = [variable for variable in variables if re.search(rf"\b{variable[0]}\b", expression)]
+        drivers.drive(socket, "default_value", expression, used)
         driven += 1
     return driven
 

@@ -1,5 +1,7 @@
-"""Sparkles as pinpoints: how many pixels a sparkle covers, and how fast glint pixels converge,
-with glint cells sized to the pixel's footprint (filtered) and with one cell per grain.
+"""Sparkles as pinpoints: how many pixels a sparkle covers, and how fast glint pixels converge:
+sparkles put into their pixels (splat, with the presets' half-pixel filter and with Blender's
+1.5 px one), glint cells sized to the pixel's footprint (cells, the fallback without a render
+camera) and one cell per grain (unfiltered).
 
 Scene: devtools.sparkles.sparkling_sand (a wide plane of sand, grains of 4 cm, a 30 degree sun
 ahead, the camera 1.6 m up looking 20 degrees down). Sizes: sparkle pixels (over 4x the 5x5
@@ -31,8 +33,15 @@ REFERENCE_SPP = 1024
 GLINT_DIFFERENCE = 0.05
 GRAIN = 0.04  # devtools.sparkles' Glint Size
 SCENE = ("devtools/sparkles.py: a wide plane of sand, grains of 4 cm, a 30 degree sun ahead, the camera "
-         "1.6 m up looking 20 degrees down; filtered: glint cells sized to the pixel's footprint, "
-         "unfiltered: one cell per grain. Sparkles: pixels over 4x the 5x5 median, 8-connected, 16 spp.")
+         "1.6 m up looking 20 degrees down; splat: sparkles put into their pixels (Glint Splat), with the "
+         "presets' 0.5 px pixel filter or Blender's 1.5 px; cells: glint cells sized to the pixel's "
+         "footprint "
+         "(the splat off); unfiltered: one cell per grain. Sparkles: pixels over 4x the 5x5 median, "
+         "8-connected, 16 spp.")
+MODES = {  # name -> (pixel footprint, splat, pixel filter width)
+    "splat": (True, True, 0.5), "splat, 1.5 px filter": (True, True, 1.5), "cells": (True, False, 1.5),
+    "unfiltered": (False, False, 1.5),
+}
 
 
 def near_and_far(bpy, sandscape):
@@ -59,20 +68,27 @@ def main(argv=None):
     sandscape = session.install_dev_extension(root)
     from devtools import readback, sparkles
 
-    def render(resolution, mode, samples=16, seed=0):
+    def render(resolution, mode, samples=16, seed=0, glints=True):
         session.reset()
-        scene = sparkles.sparkling_sand(sandscape, resolution, mode != "unfiltered", samples, seed)
-        if mode == "off":
-            material = bpy.context.scene.objects["Plane"].active_material
-            sandscape.addon.sand.glint_node(material).inputs["Threshold"].default_value = 1.0
+        footprint, splat, filter_width = MODES[mode]
+        scene = sparkles.sparkling_sand(sandscape, resolution, footprint, samples, seed)
+        scene.cycles.filter_width = filter_width
+        node = sandscape.addon.sand.glint_node(bpy.context.scene.objects["Plane"].active_material)
+        if not splat:
+            for name in ("Resolution X", "Resolution Y"):
+                node.inputs[name].driver_remove("default_value")
+                node.inputs[name].default_value = 0.0
+        if not glints:
+            node.inputs["Threshold"].default_value = 1.0
         started = time.perf_counter()
         pixels = readback.render(scene)
         return pixels, time.perf_counter() - started
 
     size_rows = []
     for resolution in () if args.convergence else SIZES:
-        for mode in ("filtered", "unfiltered", "off"):
-            pixels, seconds = render(resolution, mode)
+        for mode, glints in (*((mode, True) for mode in MODES), ("splat", False)):
+            pixels, seconds = render(resolution, mode, glints=glints)
+            mode = mode if glints else "off"
             found = sparkles.sparkle_sizes(pixels)
             mean = f"{found.mean():.2f}" if found.size else "-"
             single = f"{np.mean(found == 1):.0%}" if found.size else "-"
@@ -83,10 +99,10 @@ def main(argv=None):
             print(size_rows[-1], flush=True)
 
     rmse_rows = []
-    for mode in ("filtered", "unfiltered"):
+    for mode in MODES:
         reference, _ = render(CONVERGENCE, mode, REFERENCE_SPP, seed=99)
         bands = near_and_far(bpy, sandscape)
-        bare, _ = render(CONVERGENCE, "off", REFERENCE_SPP, seed=99)
+        bare, _ = render(CONVERGENCE, mode, REFERENCE_SPP, seed=99, glints=False)
         # The scene keeps exposure 0: display values with the bare sand's median at 0.5.
         scale = 0.5 / float(np.median(bare[..., :3]))
         reference, bare = reference[..., :3] * scale, bare[..., :3] * scale

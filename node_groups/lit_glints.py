@@ -8,20 +8,21 @@ bright as its grain's light in one pixel. With Pixel Angle and Pixel Size 0 ther
 per grain: Sandscape Glints' grains. Twin: core.glints.sparkle_noise and core.sand.glint_facets.
 """
 
-from . import glint_cells, glint_facet
+from . import glint_cells, glint_facet, glint_splat
 from . import helper as h
 
 NAME = "Sandscape Lit Glints"
-VERSION = 3
+VERSION = 4
 TREE_TYPE = "ShaderNodeTree"
 DESCRIPTION = ("Sparkling sand lit by the sun: cells of grains sized to the pixel's footprint, a seeded "
                "random value per cell, mirror facets above Threshold that glint only where light "
                "reaches them")
 
-INPUTS = {**glint_facet.INPUTS, **glint_cells.INPUTS}
+INPUTS = {**glint_facet.INPUTS, **glint_cells.INPUTS, **glint_splat.INPUTS}
 SOCKETS = ("Base", "Threshold", "Glint Size", "Facing Power", "Color", "Roughness", "Seed", "Normal",
-           "Pixel Angle", "Pixel Size")
+           "Pixel Angle", "Pixel Size", "Resolution X", "Resolution Y")
 CELL_SOCKETS = ("Glint Size", "Seed", "Threshold", "Pixel Angle", "Pixel Size")
+FACET_SOCKETS = ("Facing Power", "Color", "Roughness", "Normal")
 
 
 def build(tree):
@@ -47,9 +48,60 @@ def build(tree):
     for name in ("Base", "Facing Power", "Roughness", "Normal"):
         h.link(tree, inputs[name], facet.inputs[name])
     mask = h.math(tree, "MULTIPLY", facet.outputs["Mask"], cells.outputs["Weight"], label="Mask × Weight")
-    h.link(tree, facet.outputs["Shader"], group_out.inputs["Shader"])
-    h.link(tree, mask.outputs[0], group_out.inputs["Mask"])
-    h.link(tree, facet.outputs["Facet Normal"], group_out.inputs["Facet Normal"])
-    h.frame(tree, "Cells Sized to the Pixel", (cells,))
+    h.frame(tree, "Cells Sized to the Pixel (no render camera)", (cells,))
     h.frame(tree, "Mirror Facet", (facet, coverage, boost, color, mask))
+    splat, splat_mask, splat_nodes = _splat(tree, inputs)
+
+    # The splat where the render camera's pixel is known; the cells elsewhere (the inactive branch's
+    # closures weigh nothing, so Cycles does not evaluate them).
+    choose = h.add_node(tree, "ShaderNodeMixShader", label="Cells or Splat")
+    h.link(tree, splat.outputs["Active"], choose.inputs["Fac"])
+    h.link(tree, facet.outputs["Shader"], choose.inputs[1])
+    h.link(tree, splat_mask[0], choose.inputs[2])
+    either = h.add_node(tree, "ShaderNodeMix", label="Mask: Cells or Splat")
+    h.link(tree, splat.outputs["Active"], h.socket(either.inputs, "Factor"))
+    h.link(tree, mask.outputs[0], h.socket(either.inputs, "A"))
+    h.link(tree, splat_mask[1], h.socket(either.inputs, "B"))
+    h.link(tree, choose.outputs[0], group_out.inputs["Shader"])
+    h.link(tree, h.socket(either.outputs, "Result"), group_out.inputs["Mask"])
+    h.link(tree, facet.outputs["Facet Normal"], group_out.inputs["Facet Normal"])
+    h.frame(tree, "Sparkles Put into Their Pixels", splat_nodes)
+    h.frame(tree, "Which Applies", (choose, either))
     h.arrange(tree)
+
+
+def _splat(tree, inputs):
+    """The base with each candidate's facet over its share of the pixel. Returns (the splat node,
+    (shader, mask) sockets, the nodes made)."""
+    splat = h.add_node(tree, "ShaderNodeGroup", node_tree=h.ensure_group(glint_splat), label="Glint Splat")
+    for name in glint_splat.INPUTS:
+        h.link(tree, inputs[name], splat.inputs[name])
+    made, total, shader = [splat], None, None
+    for k in glint_splat.CANDIDATES:
+        facet = h.add_node(tree, "ShaderNodeGroup", node_tree=h.ensure_group(glint_facet), label=f"Facet {k}")
+        h.link(tree, splat.outputs[f"Noise {k}"], facet.inputs["Noise"])
+        h.link(tree, splat.outputs[f"Tilt {k}"], facet.inputs["Tilt"])
+        h.link(tree, splat.outputs["Threshold"], facet.inputs["Threshold"])
+        h.link(tree, splat.outputs[f"Amount {k}"], facet.inputs["Coverage"])
+        for name in FACET_SOCKETS:
+            h.link(tree, inputs[name], facet.inputs[name])
+        made.append(facet)
+        amount = splat.outputs[f"Amount {k}"]
+        if total is None:
+            total, shader = amount, facet.outputs["Shader"]
+            continue
+        add = h.math(tree, "ADD", total, amount, label="Mirror Share")
+        both = h.add_node(tree, "ShaderNodeAddShader", label="+ Facet")
+        h.link(tree, shader, both.inputs[0])
+        h.link(tree, facet.outputs["Shader"], both.inputs[1])
+        made += [add, both]
+        total, shader = add.outputs[0], both.outputs[0]
+    # The sand keeps what the mirrors do not cover (an unlinked shader input adds nothing).
+    sand = h.add_node(tree, "ShaderNodeMixShader", label="Sand Under the Mirrors")
+    h.link(tree, total, sand.inputs["Fac"])
+    h.link(tree, inputs["Base"], sand.inputs[1])
+    both = h.add_node(tree, "ShaderNodeAddShader", label="Sand + Facets")
+    h.link(tree, sand.outputs[0], both.inputs[0])
+    h.link(tree, shader, both.inputs[1])
+    made += [sand, both]
+    return splat, (both.outputs[0], total), made

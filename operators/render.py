@@ -40,8 +40,8 @@ class SANDSCAPE_OT_optimize_scene(SandscapeOperator, bpy.types.Operator):
 
 
 class SANDSCAPE_OT_apply_quality_preset(SandscapeOperator, bpy.types.Operator):
-    """Set Cycles' samples, denoising, volume sampling, dicing and bounces from a measured quality preset
-    (a scene in another engine is switched to Cycles, and the report says so)"""
+    """Set Cycles' samples, denoising, volume sampling, dicing, bounces and pixel filter from a measured
+    quality preset (a scene in another engine is switched to Cycles, and the report says so)"""
 
     bl_idname = "sandscape.apply_quality_preset"
     bl_label = "Apply Quality Preset"

@@ -19,7 +19,7 @@ def test_rerun_updates_instead_of_duplicating(sandscape):
     assert len(ours(bpy.data.materials, "sandscape_material")) == 1
     assert len(plane.material_slots) == 1
     # physical sand + its sand normal, lit glints + their cells and facet, ripples
-    assert len(ours(bpy.data.node_groups, "sandscape_group")) == 6
+    assert len(ours(bpy.data.node_groups, "sandscape_group")) == 7
     node = sandscape.addon.sand.glint_node(plane.active_material)
     assert node.inputs["Threshold"].default_value == pytest.approx(0.5)
     assert node.inputs["Roughness"].default_value == pytest.approx(0.2)

@@ -200,7 +200,7 @@ def test_shift_a_offers_sandscape(sandscape):
     ("ShaderNodeTree", {"Sandscape Glints", "Sandscape Glint Shade", "Sandscape Footprint Height",
                         "Sandscape Dust Volume", "Sandscape Dust Field", "Sandscape Physical Sand",
                         "Sandscape Journey Sand", "Sandscape Lit Glints", "Sandscape Glint Facet",
-                        "Sandscape Glint Cells",
+                        "Sandscape Glint Cells", "Sandscape Glint Splat",
                         "Sandscape Sand Normal", "Sandscape Ripples", "Sandscape Cloud Density",
                         "Sandscape Weather Map"}),
     ("CompositorNodeTree", {"Sandscape Gated Blur", "Sandscape God Rays", "Sandscape Sun Place"}),
