@@ -160,23 +160,26 @@ def main(argv=None):
     plot(rows, REPO / "bench" / "quality.png")
 
 
-def reference_halves(readback, scene, presets, frame, reference_spp):
+def reference_halves(readback, scene, presets, frame, reference_spp, filter_width=None):
     """(half, other half, the display's white): two raw unbiased renders of a demo frame at
-    RESOLUTION, each with half the reference's samples and its own seed."""
+    RESOLUTION, each with half the reference's samples and its own seed; with Blender's pixel
+    filter unless `filter_width` names another (a render is graded against its own filter's)."""
     scene.render.resolution_x, scene.render.resolution_y = RESOLUTION
     scene.frame_set(frame)
     base = dict(presets.BLENDER_DEFAULTS, **LIGHT_PATHS, samples=reference_spp // 2,
                 use_adaptive_sampling=False, use_denoising=False)
+    if filter_width is not None:
+        base["filter_width"] = filter_width
     halves = [render(readback, scene, base, presets, seed=seed)[1] for seed in REFERENCE_SEEDS]
     return *halves, 2.0 ** -scene.view_settings.exposure
 
 
-def reference_rmse(readback, scene, presets, frame, reference_spp):
+def reference_rmse(readback, scene, presets, frame, reference_spp, filter_width=None):
     """(rmse(pixels), the reference's own noise, the display's white) for a demo frame.
 
     The halves' mean is the reference, their difference its own noise, which is taken out of
     every RMSE (it would otherwise set a floor under them)."""
-    half, other, white = reference_halves(readback, scene, presets, frame, reference_spp)
+    half, other, white = reference_halves(readback, scene, presets, frame, reference_spp, filter_width)
     reference = (half + other) / 2
     reference_noise = results.clipped_rmse(half, other, white) / 2
 
@@ -193,8 +196,10 @@ def preset_tables(readback, scene, presets, frames, quick, no_append):
     reference_spp = 256 if quick else 1024
     lines = [results.heading("Quality, presets across the film",
                              ["--preset-frames", *map(str, frames)] + (["--quick"] if quick else []))]
+    sharp = presets.SHARP_FILTER["filter_width"]
     for frame in frames:
         rmse, reference_noise, white = reference_rmse(readback, scene, presets, frame, reference_spp)
+        rmse_sharp, noise_sharp, _ = reference_rmse(readback, scene, presets, frame, reference_spp, sharp)
         rows = []
         for samples in (16, 64):
             settings = dict(presets.BLENDER_DEFAULTS, **LIGHT_PATHS, samples=samples)
@@ -203,11 +208,14 @@ def preset_tables(readback, scene, presets, frames, quick, no_append):
             print(frame, rows[-1], flush=True)
         for name, settings in presets.PRESETS.items():
             seconds, pixels = render(readback, scene, settings, presets)
-            rows.append((f"preset {name.lower()}", seconds, rmse(pixels)))
+            graded = rmse_sharp if settings.get("filter_width") == sharp else rmse
+            rows.append((f"preset {name.lower()}", seconds, graded(pixels)))
             print(frame, rows[-1], flush=True)
         lines += [f"{results.machine()}. Demo frame {frame} at {RESOLUTION[0]}x{RESOLUTION[1]} through its "
                   f"compositor; reference two {reference_spp // 2}-spp raw unbiased renders (own noise "
-                  f"{reference_noise:.5f}, taken out); RMSE clipped at the display's white ({white:g}); "
+                  f"{reference_noise:.5f}, taken out), one pair with Blender's 1.5 px pixel filter for "
+                  f"Blender's defaults and one with the presets' {sharp} px for the presets (own noise "
+                  f"{noise_sharp:.5f}); RMSE clipped at the display's white ({white:g}); "
                   "Blender's defaults are adaptive 0.01, OIDN, unbiased volumes, 128 volume bounces.\n",
                   "| render | s | RMSE |", "|---|---|---|",
                   *(f"| {label} | {seconds:.2f} | {error:.5f} |" for label, seconds, error in rows), ""]
