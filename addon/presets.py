@@ -21,14 +21,15 @@ BLENDER_DEFAULTS = {
 # majorant-grid cost per render, with adaptive sampling and Cycles' denoiser (the tree then takes
 # the sparkles from its noisy image) lie lowest (Final); volume bounces are for clouds, whose light
 # grows with bounces up to about 128 (bench/clouds.py), and the total cap (max_bounces) must let
-# them run. The pixel filter is half a pixel wide: Cycles spreads a Blackman-Harris filter over
-# twice its width, so at 1.5 px two in five of a pixel's samples land in its neighbours, where
-# Sandscape Glint Splat's sparkles are not the pixel's; at 0.5 px every sample stays in its pixel
-# and glint pixels converge like the sand.
+# them run. The pixel filter stays Blender's: at half a pixel (SHARP_FILTER, an option of the
+# operator) every sample stays in its pixel and the glint splat's sparkles converge four times
+# faster, but the denoised frame lies further from its own sharper reference (bench/RESULTS.md,
+# "Pixel filter and the presets"). Cycles spreads a Blackman-Harris filter over twice its width:
+# at 1.5 px two in five of a pixel's samples land in its neighbours.
 SHARP_FILTER = {"pixel_filter_type": "BLACKMAN_HARRIS", "filter_width": 0.5}
 _RAW_RAY_MARCHED = {"use_adaptive_sampling": False, "adaptive_threshold": 0.0, "use_denoising": False,
                     "volume_biased": True, "volume_step_rate": 1.0, "dicing_rate": 1.0,
-                    "sampling_pattern": "AUTOMATIC", **SHARP_FILTER}
+                    "sampling_pattern": "AUTOMATIC"}
 
 
 def _preset(samples, volume_bounces, step_rate=1.0, denoise=True):
@@ -39,7 +40,7 @@ def _preset(samples, volume_bounces, step_rate=1.0, denoise=True):
 DENOISE = "denoise_but_glints"  # not a Cycles setting: the post-effects tree's denoising
 _UNBIASED_ADAPTIVE = {"use_adaptive_sampling": True, "adaptive_threshold": 0.01, "use_denoising": True,
                       "volume_biased": False, "volume_step_rate": 1.0, "dicing_rate": 1.0,
-                      "sampling_pattern": "AUTOMATIC", **SHARP_FILTER}
+                      "sampling_pattern": "AUTOMATIC"}
 PRESETS = {"DRAFT": _preset(16, 16), "PREVIEW": _preset(72, 64),
            "FINAL": {"samples": 512, **_UNBIASED_ADAPTIVE, "volume_bounces": 128, "max_bounces": 128,
                      DENOISE: True}}

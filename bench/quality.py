@@ -8,7 +8,8 @@ volume step rate); Blender's defaults; and each Sandscape preset. Writes the cur
 bench/quality.png (matplotlib, from requirements-bench.txt) and appends the table to
 bench/RESULTS.md.
 
-Run: .venv/bin/python bench/quality.py [--quick] [--axes] [--noise] [--preset-frames F ...] [--no-append]
+Run: .venv/bin/python bench/quality.py [--quick] [--axes] [--noise] [--preset-frames F ...]
+     [--filter-frame F] [--no-append]
 """
 
 import argparse
@@ -74,6 +75,8 @@ def main(argv=None):
                         help="the demo frames the noise rows are measured on")
     parser.add_argument("--preset-frames", type=int, nargs="+",
                         help="only the presets and the defaults' short curve, on these demo frames")
+    parser.add_argument("--filter-frame", type=int,
+                        help="only the pixel filter table (Draft, Preview, raw 64 spp at 0.5, 0.75, 1.5 px)")
     parser.add_argument("--no-append", action="store_true")
     args = parser.parse_args(argv)
     root = session.isolate()
@@ -89,6 +92,9 @@ def main(argv=None):
     bpy.ops.sandscape.build_demo_scene()
     scene = bpy.context.scene
     scene.render.resolution_percentage = 100
+    if args.filter_frame is not None:
+        filter_table(readback, scene, presets, args.filter_frame, args.no_append)
+        return
     if args.preset_frames:
         preset_tables(readback, scene, presets, args.preset_frames, args.quick, args.no_append)
         return
@@ -197,9 +203,12 @@ def preset_tables(readback, scene, presets, frames, quick, no_append):
     lines = [results.heading("Quality, presets across the film",
                              ["--preset-frames", *map(str, frames)] + (["--quick"] if quick else []))]
     sharp = presets.SHARP_FILTER["filter_width"]
+    any_sharp = any(settings.get("filter_width") == sharp for settings in presets.PRESETS.values())
     for frame in frames:
         rmse, reference_noise, white = reference_rmse(readback, scene, presets, frame, reference_spp)
-        rmse_sharp, noise_sharp, _ = reference_rmse(readback, scene, presets, frame, reference_spp, sharp)
+        rmse_sharp, noise_sharp = rmse, reference_noise
+        if any_sharp:
+            rmse_sharp, noise_sharp, _ = reference_rmse(readback, scene, presets, frame, reference_spp, sharp)
         rows = []
         for samples in (16, 64):
             settings = dict(presets.BLENDER_DEFAULTS, **LIGHT_PATHS, samples=samples)
@@ -213,12 +222,37 @@ def preset_tables(readback, scene, presets, frames, quick, no_append):
             print(frame, rows[-1], flush=True)
         lines += [f"{results.machine()}. Demo frame {frame} at {RESOLUTION[0]}x{RESOLUTION[1]} through its "
                   f"compositor; reference two {reference_spp // 2}-spp raw unbiased renders (own noise "
-                  f"{reference_noise:.5f}, taken out), one pair with Blender's 1.5 px pixel filter for "
-                  f"Blender's defaults and one with the presets' {sharp} px for the presets (own noise "
-                  f"{noise_sharp:.5f}); RMSE clipped at the display's white ({white:g}); "
+                  f"{reference_noise:.5f}, taken out)"
+                  + (f", and a pair with the {sharp} px filter for the presets that use it (own noise "
+                     f"{noise_sharp:.5f})" if any_sharp else "")
+                  + f"; RMSE clipped at the display's white ({white:g}); "
                   "Blender's defaults are adaptive 0.01, OIDN, unbiased volumes, 128 volume bounces.\n",
                   "| render | s | RMSE |", "|---|---|---|",
                   *(f"| {label} | {seconds:.2f} | {error:.5f} |" for label, seconds, error in rows), ""]
+    results.publish(lines, append=not no_append)
+
+
+FILTER_WIDTHS = (0.5, 0.75, 1.5)
+
+
+def filter_table(readback, scene, presets, frame, no_append):
+    """Draft, Preview and raw 64 spp with each pixel filter width, each against a reference pair
+    with the same filter: what a sharper filter costs the denoised frame."""
+    lines = [results.heading("Pixel filter and the presets", ["--filter-frame", str(frame)]),
+             f"{results.machine()}. Demo frame {frame} at {RESOLUTION[0]}x{RESOLUTION[1]} through its "
+             "compositor; each filter against its own reference pair (two 512-spp raw unbiased renders), "
+             "its own noise taken out.\n",
+             "| filter px | reference noise | draft s, RMSE | preview s, RMSE | raw 64 spp s, RMSE |",
+             "|---|---|---|---|---|"]
+    for width in FILTER_WIDTHS:
+        rmse, noise, _ = reference_rmse(readback, scene, presets, frame, 1024, width)
+        cells = []
+        for settings in (presets.PRESETS["DRAFT"], presets.PRESETS["PREVIEW"],
+                         dict(presets.PRESETS["PREVIEW"], samples=64, **{presets.DENOISE: False})):
+            seconds, pixels = render(readback, scene, dict(settings, filter_width=width), presets)
+            cells.append(f"{seconds:.1f} s, {rmse(pixels):.4f}")
+        lines.append(f"| {width} | {noise:.4f} | " + " | ".join(cells) + " |")
+        print(lines[-1], flush=True)
     results.publish(lines, append=not no_append)
 
 

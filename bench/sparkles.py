@@ -1,5 +1,5 @@
 """Sparkles as pinpoints: how many pixels a sparkle covers, and how fast glint pixels converge:
-sparkles put into their pixels (splat, with the presets' half-pixel filter and with Blender's
+sparkles put into their pixels (splat, with the sharp half-pixel filter and with Blender's
 1.5 px one), glint cells sized to the pixel's footprint (cells, the fallback without a render
 camera) and one cell per grain (unfiltered).
 
@@ -34,7 +34,7 @@ GLINT_DIFFERENCE = 0.05
 GRAIN = 0.04  # devtools.sparkles' Glint Size
 SCENE = ("devtools/sparkles.py: a wide plane of sand, grains of 4 cm, a 30 degree sun ahead, the camera "
          "1.6 m up looking 20 degrees down; splat: sparkles put into their pixels (Glint Splat), with the "
-         "presets' 0.5 px pixel filter or Blender's 1.5 px; cells: glint cells sized to the pixel's "
+         "sharp 0.5 px pixel filter or Blender's 1.5 px; cells: glint cells sized to the pixel's "
          "footprint "
          "(the splat off); unfiltered: one cell per grain. Sparkles: pixels over 4x the 5x5 median, "
          "8-connected, 16 spp.")

@@ -14,8 +14,8 @@ SPARKLE_BAR = 4.0  # a sparkle pixel: over this many times the median of the 5x5
 def sparkling_sand(sandscape, resolution, filtered=True, samples=16, seed=0, shade_left=False):
     """Sand on a wide plane under a 30 degree sun ahead, seen from 1.6 m looking down 20 degrees
     toward it: grains of 4 cm span several pixels near the camera and a fraction far away.
-    The pixel filter is the presets' (half a pixel). filtered=False drops the glints' pixel
-    footprint (one cell per grain); shade_left puts a roof
+    The pixel filter is the sharp one (half a pixel, the preset operator's option).
+    filtered=False drops the glints' pixel footprint (one cell per grain); shade_left puts a roof
     high over x < 0, hidden from the camera, so the left half of the frame lies in its shadow.
     Returns the scene."""
     bpy.ops.mesh.primitive_plane_add(size=200)
@@ -26,7 +26,7 @@ def sparkling_sand(sandscape, resolution, filtered=True, samples=16, seed=0, sha
     bpy.ops.sandscape.add_atmosphere()
     scene = readback.cycles_scene(resolution=resolution, samples=samples)
     scene.cycles.seed = seed
-    scene.cycles.filter_width = sandscape.addon.presets.SHARP_FILTER["filter_width"]  # as the presets
+    scene.cycles.filter_width = sandscape.addon.presets.SHARP_FILTER["filter_width"]
     scenes.camera("PERSP", location=(0.0, -30.0, 1.6), rotation=(math.radians(70), 0.0, 0.0))
     if shade_left:
         bpy.ops.mesh.primitive_plane_add(size=1, location=(-50.5, 0.0, 6.0))

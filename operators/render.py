@@ -40,8 +40,8 @@ class SANDSCAPE_OT_optimize_scene(SandscapeOperator, bpy.types.Operator):
 
 
 class SANDSCAPE_OT_apply_quality_preset(SandscapeOperator, bpy.types.Operator):
-    """Set Cycles' samples, denoising, volume sampling, dicing, bounces and pixel filter from a measured
-    quality preset (a scene in another engine is switched to Cycles, and the report says so)"""
+    """Set Cycles' samples, denoising, volume sampling, dicing and bounces from a measured quality preset
+    (a scene in another engine is switched to Cycles, and the report says so)"""
 
     bl_idname = "sandscape.apply_quality_preset"
     bl_label = "Apply Quality Preset"
@@ -54,8 +54,13 @@ class SANDSCAPE_OT_apply_quality_preset(SandscapeOperator, bpy.types.Operator):
                ("FINAL", "Final", "512 samples, adaptive, unbiased volumes, Cycles' denoiser with the "
                 "glints kept raw: Blender's recipe, a fraction of its samples")))
 
+    sharp_pixels: BoolProperty(
+        name="Sharp Pixel Filter", default=False,
+        description="A half-pixel pixel filter: glints converge about four times faster, the image is "
+                    "crisper, and the denoised sand keeps less of its finest detail")
+
     def execute(self, context):
-        settings = presets.PRESETS[self.preset]
+        settings = dict(presets.PRESETS[self.preset], **(presets.SHARP_FILTER if self.sharp_pixels else {}))
         engine = context.scene.render.engine
         if engine != "CYCLES":  # the presets are Cycles settings, measured in Cycles
             context.scene.render.engine = "CYCLES"

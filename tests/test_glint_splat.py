@@ -121,12 +121,12 @@ def glint_noise(sandscape, filter_width, samples=64, reference_samples=256):
 
 
 def test_glint_pixels_converge_at_64_samples(sandscape):
-    """With the presets' half-pixel filter every sample stays in its pixel and finds the pixel's
-    sparkles: 64 samples within 0.03. Blender's 1.5 px filter puts two in five samples in the
-    neighbours, and the noise is over that."""
+    """With the sharp pixel filter (half a pixel, the preset operator's option) every sample stays
+    in its pixel and finds the pixel's sparkles: 64 samples within 0.03. Blender's 1.5 px filter
+    puts two in five samples in the neighbours, and the noise is over that (yet half the cells')."""
     sharp, share = glint_noise(sandscape, sandscape.addon.presets.SHARP_FILTER["filter_width"])
     wide, _ = glint_noise(sandscape, 1.5)
-    print(f"glint pixels ({share:.1%} of the frame): noise at 64 spp {sharp:.4f} with the presets' "
+    print(f"glint pixels ({share:.1%} of the frame): noise at 64 spp {sharp:.4f} with the sharp "
           f"filter, {wide:.4f} with Blender's")
     assert share > 0.02
     assert sharp <= 0.03 < wide
