@@ -1,11 +1,13 @@
-"""Sandscape Lit Glints: glinting grains as mirror facets lit by real light, in cells sized to the
-pixel's footprint (Sandscape Glint Cells), so a sparkle covers at most one pixel.
+"""Sandscape Lit Glints: glinting grains as mirror facets lit by real light, each sparkle a point
+put into the pixel it projects into (Sandscape Glint Splat), so a sparkle covers one pixel and
+every sample of that pixel agrees on it.
 
-Each cell's noise says whether it can glint, its noise colour which way its facet leans
-(Sandscape Glint Facet), and its weight how much of a mirror it is: a far cell stands for many
-grains and is mirror over their share of it, sand elsewhere; a near cell is all mirror, as
-bright as its grain's light in one pixel. With Pixel Angle and Pixel Size 0 there is one cell
-per grain: Sandscape Glints' grains. Twin: core.glints.sparkle_noise and core.sand.glint_facets.
+The splat's four candidate cells each get a facet (Sandscape Glint Facet: its noise says whether
+it can glint, its colour which way it leans) over their share of the pixel; the sand keeps the
+rest. Without a render camera's pixel (Resolution 0, a panoramic camera) the cells sized to the
+pixel's footprint (Sandscape Glint Cells) stand in, found by the samples that land in them; with
+Pixel Angle and Pixel Size 0 too, one cell per grain: Sandscape Glints' grains.
+Twins: core.glint_splat, core.glints.sparkle_noise and core.sand.glint_facets.
 """
 
 from . import glint_cells, glint_facet, glint_splat
