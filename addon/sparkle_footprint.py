@@ -38,17 +38,21 @@ VARIABLES = {  # name -> data path on the scene
 }
 
 
+# Each expression's variables: a resolution driver needs no camera.
+_USED = {name: [variable for variable in VARIABLES if re.search(rf"\b{variable}\b", expression)]
+         for name, expression in EXPRESSIONS.items()}
+
+
 def attach(node, scene):
     """Drive the node's Pixel Angle, Pixel Size and Resolution from the scene's camera (inputs the artist
     linked are left alone). Returns the number of inputs driven."""
     driven = 0
-    variables = [(name, "SCENE", scene, path) for name, path in VARIABLES.items()]
     for name, expression in EXPRESSIONS.items():
         socket = node.inputs.get(name)
         if socket is None or socket.is_linked:
             continue
-        used = [variable for variable in variables if re.search(rf"\b{variable[0]}\b", expression)]
-        drivers.drive(socket, "default_value", expression, used)
+        variables = [(variable, "SCENE", scene, VARIABLES[variable]) for variable in _USED[name]]
+        drivers.drive(socket, "default_value", expression, variables)
         driven += 1
     return driven
 

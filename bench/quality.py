@@ -202,13 +202,8 @@ def preset_tables(readback, scene, presets, frames, quick, no_append):
     reference_spp = 256 if quick else 1024
     lines = [results.heading("Quality, presets across the film",
                              ["--preset-frames", *map(str, frames)] + (["--quick"] if quick else []))]
-    sharp = presets.SHARP_FILTER["filter_width"]
-    any_sharp = any(settings.get("filter_width") == sharp for settings in presets.PRESETS.values())
     for frame in frames:
         rmse, reference_noise, white = reference_rmse(readback, scene, presets, frame, reference_spp)
-        rmse_sharp, noise_sharp = rmse, reference_noise
-        if any_sharp:
-            rmse_sharp, noise_sharp, _ = reference_rmse(readback, scene, presets, frame, reference_spp, sharp)
         rows = []
         for samples in (16, 64):
             settings = dict(presets.BLENDER_DEFAULTS, **LIGHT_PATHS, samples=samples)
@@ -217,15 +212,11 @@ def preset_tables(readback, scene, presets, frames, quick, no_append):
             print(frame, rows[-1], flush=True)
         for name, settings in presets.PRESETS.items():
             seconds, pixels = render(readback, scene, settings, presets)
-            graded = rmse_sharp if settings.get("filter_width") == sharp else rmse
-            rows.append((f"preset {name.lower()}", seconds, graded(pixels)))
+            rows.append((f"preset {name.lower()}", seconds, rmse(pixels)))
             print(frame, rows[-1], flush=True)
         lines += [f"{results.machine()}. Demo frame {frame} at {RESOLUTION[0]}x{RESOLUTION[1]} through its "
                   f"compositor; reference two {reference_spp // 2}-spp raw unbiased renders (own noise "
-                  f"{reference_noise:.5f}, taken out)"
-                  + (f", and a pair with the {sharp} px filter for the presets that use it (own noise "
-                     f"{noise_sharp:.5f})" if any_sharp else "")
-                  + f"; RMSE clipped at the display's white ({white:g}); "
+                  f"{reference_noise:.5f}, taken out); RMSE clipped at the display's white ({white:g}); "
                   "Blender's defaults are adaptive 0.01, OIDN, unbiased volumes, 128 volume bounces.\n",
                   "| render | s | RMSE |", "|---|---|---|",
                   *(f"| {label} | {seconds:.2f} | {error:.5f} |" for label, seconds, error in rows), ""]

@@ -49,7 +49,7 @@ def cells(reach, size, threshold, rise, pixel_area):
         level = np.ceil(np.log2(np.maximum(reach / size, 1e-30)))
     level = np.clip(level, *glints.LEVELS)
     grains = 4.0 ** level
-    level_threshold = np.maximum(threshold ** grains, 1.0 - grains * (1.0 - threshold))
+    level_threshold = glints.level_threshold(threshold, grains)
     with np.errstate(divide="ignore", invalid="ignore"):
         share = np.where(level_threshold < 1.0, (1.0 - threshold) / (1.0 - level_threshold), 0.0)
     cell = size * 2.0 ** level

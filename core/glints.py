@@ -49,6 +49,13 @@ def sparkle_level(footprint, size):
 MIN_FACING = 0.05  # N.V below this counts as this: a grazing pixel's footprint stops growing
 
 
+def level_threshold(threshold, grains):
+    """The threshold of a cell of `grains` grains: a coarse cell sparkles when one of its grains
+    would (threshold^grains), a fine one keeps the grains' count per area (1 - grains (1 -
+    threshold)); the larger is the level's, and they meet at one grain."""
+    return np.maximum(np.power(threshold, grains), 1 - (1 - threshold) * grains)
+
+
 def sparkle_cells(footprint, size, threshold, n_dot_v=1.0):
     """(cell size, threshold, weight) of the sparkle cells for a pixel footprint (object units)
     where the view meets the surface at n_dot_v.
@@ -64,24 +71,24 @@ def sparkle_cells(footprint, size, threshold, n_dot_v=1.0):
     level = sparkle_level(footprint, size)
     grains = np.power(F32(4), level).astype(F32)
     threshold = F32(threshold)
-    level_threshold = np.maximum(np.power(threshold, grains), F32(1) - (F32(1) - threshold) * grains)
-    share = _safe_divide(F32(1) - threshold, F32(1) - level_threshold)
+    cell_threshold = level_threshold(threshold, grains)
+    share = _safe_divide(F32(1) - threshold, F32(1) - cell_threshold)
     cell_size = (F32(size) * np.power(F32(2), level)).astype(F32)
     facing = np.maximum(np.abs(np.asarray(n_dot_v, F32)), F32(MIN_FACING))
     footprint = np.asarray(footprint, F32)
     pixel_cells = _safe_divide(footprint * footprint, cell_size * cell_size * facing)
     pixel_cells = np.maximum(pixel_cells, (level >= 0).astype(F32))  # coarse cells: the share alone
-    return cell_size, level_threshold, np.minimum(share, pixel_cells).astype(F32)
+    return cell_size, cell_threshold, np.minimum(share, pixel_cells).astype(F32)
 
 
 def sparkle_noise(position, footprint, size, threshold, seed, n_dot_v=1.0):
     """(noise, tilt, threshold, weight) per point: the sparkle cell's noise and tilt colour at its
     level, and the level's threshold and weight."""
-    cell_size, level_threshold, weight = sparkle_cells(footprint, size, threshold, n_dot_v)
+    cell_size, cell_threshold, weight = sparkle_cells(footprint, size, threshold, n_dot_v)
     level = sparkle_level(footprint, size)
     cell = np.floor(_safe_divide(position, cell_size[..., None]) + F32(0.5)).astype(F32)
     w = (F32(seed) + F32(LEVEL_SEED) * level).astype(F32)
-    return white_noise_4d(cell, w), white_noise_4d_color(cell, w), level_threshold, weight
+    return white_noise_4d(cell, w), white_noise_4d_color(cell, w), cell_threshold, weight
 
 
 def glint_shade(noise, n_dot_v, threshold, power, color, strength):
@@ -99,8 +106,8 @@ def glints(position, n_dot_v, threshold, size, power, color, strength, seed, foo
     """Twin of the Sandscape Glints group at object-space positions (..., 3); footprint: the
     pixel's footprint there in object units (0: one cell per grain)."""
     footprint = np.broadcast_to(np.asarray(footprint, F32), np.shape(position)[:-1])
-    noise, _, level_threshold, weight = sparkle_noise(position, footprint, size, threshold, seed, n_dot_v)
-    mask = (noise > level_threshold).astype(F32) * weight
+    noise, _, cell_threshold, weight = sparkle_noise(position, footprint, size, threshold, seed, n_dot_v)
+    mask = (noise > cell_threshold).astype(F32) * weight
     with np.errstate(over="ignore", under="ignore", divide="ignore"):
         mask = mask * np.power(np.asarray(n_dot_v, F32), F32(max(power, 0.0)))
     return mask, (mask * F32(strength))[..., None] * np.asarray(color, F32)[:3]

@@ -73,18 +73,19 @@ def sharp_pixels(scene=None):
     return scene
 
 
-def camera_rays(camera_obj, width, height):
-    """World-space origins and unit directions of the rays through every pixel centre.
+def camera_rays(camera_obj, width, height, columns=None, rows=None):
+    """World-space origins and unit directions of the rays through every pixel centre, or through
+    the pixel coordinates given (columns, rows in pixels from the bottom left; centres at +0.5).
 
-    Arrays (height, width, 3), rows bottom-up like Blender's pixels.
+    Arrays (height, width, 3) (or the coordinates' shape), rows bottom-up like Blender's pixels.
     """
     depsgraph = bpy.context.evaluated_depsgraph_get()
     projection = np.array(camera_obj.calc_matrix_camera(depsgraph, x=width, y=height))
     view = np.array(camera_obj.matrix_world.inverted())
     inverse = np.linalg.inv(projection @ view)
-    xs = (np.arange(width) + 0.5) / width * 2.0 - 1.0
-    ys = (np.arange(height) + 0.5) / height * 2.0 - 1.0
-    x, y = np.meshgrid(xs, ys)
+    if columns is None:
+        rows, columns = np.mgrid[0:height, 0:width] + 0.5
+    x, y = np.asarray(columns) / width * 2.0 - 1.0, np.asarray(rows) / height * 2.0 - 1.0
     ends = []
     for depth in (-1.0, 1.0):
         clip = np.stack([x, y, np.full_like(x, depth), np.ones_like(x)], axis=-1)

@@ -55,16 +55,12 @@ class _Nodes:
         return made
 
     def m(self, operation, a=None, b=None, label=None, c=None):
-        node = h.math(self.tree, operation, a, b, label=label)
-        if c is not None:
-            h._operands(self.tree, node, None, None, c)
+        node = h.math(self.tree, operation, a, b, label=label, c=c)
         self.made.append(node)
         return node.outputs[0]
 
     def v(self, operation, a=None, b=None, label=None, c=None, **inputs):
-        node = h.vector_math(self.tree, operation, a, b, label=label, **inputs)
-        if c is not None:
-            h._operands(self.tree, node, None, None, c)
+        node = h.vector_math(self.tree, operation, a, b, label=label, c=c, **inputs)
         self.made.append(node)
         return node.outputs["Value" if operation in ("DOT_PRODUCT", "LENGTH", "DISTANCE") else "Vector"]
 
@@ -81,7 +77,10 @@ class _Nodes:
     def combine(self, x, y, z, label):
         node = self.node("ShaderNodeCombineXYZ", label=label)
         for index, value in enumerate((x, y, z)):
-            h._operands(self.tree, node, *([None] * index), value)
+            if isinstance(value, float):
+                node.inputs[index].default_value = value
+            else:
+                h.link(self.tree, value, node.inputs[index])
         return node.outputs[0]
 
 
@@ -129,8 +128,7 @@ def _pixel_centre(n, inputs):
     centre = n.v("MULTIPLY_ADD", direction, n.combine(distance, distance, distance, "t"), c=start,
                  label="Pixel Centre")
     # d(point)/d(pixel) = pitch (e − ray (N·e) / (N·ray)); pitch = t × angle, or the ortho pixel.
-    pitch = n.m("MULTIPLY_ADD", distance, inputs["Pixel Angle"], c=None, label="Pitch")
-    h.link(tree, inputs["Pixel Size"], pitch.node.inputs[2])
+    pitch = n.m("MULTIPLY_ADD", distance, inputs["Pixel Angle"], c=inputs["Pixel Size"], label="Pitch")
     normal_xyz = n.xyz(normal_c, "Normal")
     steps = []
     for axis, unit in ((0, (1.0, 0.0, 0.0)), (1, (0.0, 1.0, 0.0))):
@@ -204,8 +202,7 @@ def build(tree):
     det = n.m("ADD", det, n.m("MULTIPLY", n.m("COMPARE", det, 0.0, c=0.0), 1e-30), label="Det ≠ 0")
     starts = [n.m("ADD", n.m("FLOOR", n.m("DIVIDE", n.m("SUBTRACT", at, far), cell)), 1.0, label="First Cell")
               for at, far in ((ca, reach_a), (cb, reach_b))]
-    seed = n.m("MULTIPLY_ADD", level, cells_twin.LEVEL_SEED, label="Seed of the Level")
-    h.link(tree, inputs["Seed"], seed.node.inputs[2])
+    seed = n.m("MULTIPLY_ADD", level, cells_twin.LEVEL_SEED, c=inputs["Seed"], label="Seed of the Level")
     resolution = n.m("MINIMUM", inputs["Resolution X"], inputs["Resolution Y"])
     pixel = n.m("MAXIMUM", inputs["Pixel Angle"], inputs["Pixel Size"])
     active = n.m("MULTIPLY", n.m("GREATER_THAN", resolution, 0.0), n.m("GREATER_THAN", pixel, 0.0),

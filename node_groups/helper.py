@@ -82,15 +82,16 @@ def add_node(tree, node_type, location=(0, 0), label=None, inputs=None, name=Non
     return node
 
 
-def math(tree, operation, a=None, b=None, location=(0, 0), label=None):
-    """A Math node whose two inputs are either sockets (linked) or numbers (defaults)."""
-    return _operands(tree, add_node(tree, "ShaderNodeMath", location, label, operation=operation), a, b)
+def math(tree, operation, a=None, b=None, location=(0, 0), label=None, c=None):
+    """A Math node whose inputs (c: the third, of Multiply Add and the like) are either sockets
+    (linked) or numbers (defaults)."""
+    return _operands(tree, add_node(tree, "ShaderNodeMath", location, label, operation=operation), a, b, c)
 
 
-def vector_math(tree, operation, a=None, b=None, label=None, **inputs):
-    """A Vector Math node whose first two inputs are sockets (linked) or values (defaults)."""
+def vector_math(tree, operation, a=None, b=None, label=None, c=None, **inputs):
+    """A Vector Math node whose first three inputs are sockets (linked) or values (defaults)."""
     node = add_node(tree, "ShaderNodeVectorMath", label=label, operation=operation, inputs=inputs)
-    return _operands(tree, node, a, b)
+    return _operands(tree, node, a, b, c)
 
 
 def _operands(tree, node, *values):

@@ -17,26 +17,13 @@ RES = (96, 54)
 THRESHOLD, SIZE = 0.97, 0.04
 
 
-def _rays(camera, width, height, columns, rows):
-    """World origins and directions of rays through pixel coordinates (centres at +0.5)."""
-    depsgraph = bpy.context.evaluated_depsgraph_get()
-    projection = np.array(camera.calc_matrix_camera(depsgraph, x=width, y=height))
-    inverse = np.linalg.inv(projection @ np.array(camera.matrix_world.inverted()))
-    ends = []
-    for depth in (-1.0, 1.0):
-        clip = np.stack([columns / width * 2 - 1, rows / height * 2 - 1, np.full_like(columns, depth),
-                         np.ones_like(columns)], -1) @ inverse.T
-        ends.append(clip[..., :3] / clip[..., 3:])
-    return ends[0], ends[1] - ends[0]
-
-
 def twin_amounts(ground, camera, width, height):
     """The twin's mirror share per pixel of a flat object (its local z = 0), in its own space."""
     to_object = np.array(ground.matrix_world.inverted())
     to_world = np.array(ground.matrix_world)
 
     def hit(columns, rows):
-        origin, direction = _rays(camera, width, height, columns, rows)
+        origin, direction = scenes.camera_rays(camera, width, height, columns, rows)
         origin = origin @ to_object[:3, :3].T + to_object[:3, 3]
         direction = direction @ to_object[:3, :3].T
         return origin + (-origin[..., 2] / direction[..., 2])[..., None] * direction
