@@ -20,11 +20,13 @@ from . import glint_cells
 from . import helper as h
 
 NAME = "Sandscape Glint Splat"
-VERSION = 1
+VERSION = 2
 TREE_TYPE = "ShaderNodeTree"
 DESCRIPTION = ("Sparkles as points put into the pixels round them, the same for every sample of a pixel: "
                "the four cells that can reach this pixel, their noise, tilt and share of it")
 CANDIDATES = twin.CANDIDATES
+MAX_PIXELS = 1e6  # bounds for driven inputs typed by hand: a pixel's angle (radians), ortho size (units)
+MAX_PIXEL_SIZE = 1e6
 
 INPUTS = {  # name -> (type, description, default, min, max, subtype); append only
     **{name: glint_cells.INPUTS[name] for name in ("Glint Size", "Seed", "Threshold", "Pixel Angle",
@@ -82,6 +84,11 @@ class _Nodes:
             else:
                 h.link(self.tree, value, node.inputs[index])
         return node.outputs[0]
+
+
+def _finite(n, value, top, label):
+    """A typed NaN or infinity made a number in [0, top] (Cycles' max and min drop a NaN)."""
+    return n.m("MINIMUM", n.m("MAXIMUM", value, 0.0), top, label=label)
 
 
 def _pixel_centre(n, inputs):
@@ -146,8 +153,11 @@ def build(tree):
     tree.description = DESCRIPTION
     h.add_sockets(tree, INPUTS, INPUTS, OUTPUTS)
     group_in, group_out = h.group_io(tree)
-    inputs = group_in.outputs
     n = _Nodes(tree)
+    inputs = {socket.name: socket for socket in group_in.outputs if socket.name}
+    for name, top in (("Resolution X", MAX_PIXELS), ("Resolution Y", MAX_PIXELS), ("Pixel Angle", 1.0),
+                      ("Pixel Size", MAX_PIXEL_SIZE)):
+        inputs[name] = _finite(n, inputs[name], top, f"{name}, Finite")
     centre_c, steps_c, centre_nodes = _pixel_centre(n, inputs)
 
     # To the object's space, on the lattice of the plane the normal leans least from.

@@ -117,3 +117,35 @@ def test_glint_pixels_converge_at_64_samples(sandscape):
           f"filter, {wide:.4f} with Blender's")
     assert share > 0.02
     assert sharp <= 0.03 < wide
+
+
+@pytest.mark.parametrize("name,value", [("Resolution X", math.nan), ("Resolution Y", math.inf),
+                                        ("Pixel Angle", math.nan), ("Pixel Size", -math.inf)])
+def test_a_typed_nan_or_infinity_reaches_no_pixel(sandscape, name, value):
+    """The splat's driven inputs typed by hand: the glint mask (the AOV the compositor reads) stays
+    a number and the sparkles stay. An emission would hide a NaN (Cycles drops it), so the probe
+    emits |mask| < 1e30 in red (1 where the mask is a number) and the mask in green."""
+    bpy.ops.mesh.primitive_plane_add(size=80)
+    ground = bpy.context.active_object
+    scene = readback.cycles_scene(resolution=(32, 18), samples=1)
+    scene.cycles.filter_width = 0.01
+    scenes.camera("PERSP", location=(0.0, -12.0, 1.6), rotation=(math.radians(75), 0.0, 0.0))
+    helper = sandscape.node_groups.helper
+    group = helper.ensure_group(sandscape.node_groups.lit_glints)
+    values = {"Threshold": 0.9, "Glint Size": SIZE, "Resolution X": 32, "Resolution Y": 18,
+              "Pixel Angle": 0.02, name: value}
+    material = scenes.group_material(group, values, "Mask")
+    tree = material.node_tree
+    mask = tree.nodes["Group"].outputs["Mask"]
+    finite = helper.math(tree, "LESS_THAN", helper.math(tree, "ABSOLUTE", mask).outputs[0], 1e30)
+    both = tree.nodes.new("ShaderNodeCombineXYZ")
+    tree.links.new(finite.outputs[0], both.inputs[0])
+    tree.links.new(mask, both.inputs[1])
+    tree.links.new(both.outputs[0], tree.nodes["Emission"].inputs["Color"])
+    ground.data.materials.append(material)
+    pixels = readback.render(scene)
+    plane = pixels[: 12]  # the rows below the horizon
+    print(f"{name} = {value}: mask a number on {plane[..., 0].mean():.1%} of the sand, "
+          f"mean {plane[..., 1].mean():.4f}")
+    assert plane[..., 0].min() == 1.0
+    assert 0.05 <= plane[..., 1].mean() <= 0.2  # the grains' share, 1 − Threshold, give or take
