@@ -56,6 +56,24 @@ def test_preset_sets_its_settings(sandscape, name):
     assert any(aov.name == sandscape.addon.post.GLINT_AOV for aov in layer.aovs)
 
 
+def test_sharp_pixel_filter_is_an_option_and_is_reported(sandscape):
+    """Off by default: the artist's own pixel filter stays, and the report does not name one. On: a
+    half-pixel Blackman-Harris, named in the report, the rest as the preset."""
+    from devtools import operators
+
+    cycles = bpy.context.scene.cycles
+    cycles.pixel_filter_type, cycles.filter_width = "GAUSSIAN", 2.5  # the artist's own
+    result, reports = operators.run_execute("sandscape.apply_quality_preset", preset="DRAFT")
+    assert result == {"FINISHED"} and cycles.samples == sandscape.addon.presets.PRESETS["DRAFT"]["samples"]
+    assert (cycles.pixel_filter_type, cycles.filter_width) == ("GAUSSIAN", pytest.approx(2.5))
+    assert "filter" not in reports[-1][1]
+    result, reports = operators.run_execute("sandscape.apply_quality_preset", preset="PREVIEW", sharp_pixels=True)
+    assert result == {"FINISHED"} and cycles.samples == sandscape.addon.presets.PRESETS["PREVIEW"]["samples"]
+    assert (cycles.pixel_filter_type, cycles.filter_width) == ("BLACKMAN_HARRIS", pytest.approx(0.5))
+    assert reports[-1][0] == {"INFO"}
+    assert "pixel_filter_type BLACKMAN_HARRIS" in reports[-1][1] and "filter_width 0.5" in reports[-1][1]
+
+
 def test_presets_get_cheaper_in_order(sandscape):
     presets = sandscape.addon.presets.PRESETS
     samples = [presets[name]["samples"] for name in ("DRAFT", "PREVIEW", "FINAL")]
