@@ -77,7 +77,9 @@ def ensure_patch(scene, terrain, frame, low, high, collection, pixel_size=1.0):
     away from the coarse terrain's edges and open a crack. The patch is a child of the terrain
     in the terrain's own space, with the terrain's normals (custom normals from the whole
     terrain), so shading does not change at its border.
-    Returns the patch object, or None when no face of the terrain lies in the region.
+    Faces count when they reach into the region (low, high), which is grown to take their centres.
+    Returns the patch object (None when no face of the terrain lies in the region) and the grown
+    region, which the terrain's cut takes.
     """
     depsgraph = evaluation.scene_depsgraph(scene)
     with terrain_uncut(terrain):
@@ -86,17 +88,28 @@ def ensure_patch(scene, terrain, frame, low, high, collection, pixel_size=1.0):
         placed = evaluated.matrix_world.copy()
         mesh = bpy.data.meshes.new_from_object(evaluated, depsgraph=depsgraph)
     depsgraph.update()
-    centres = np.empty(len(mesh.polygons) * 3, np.float32)
-    mesh.polygons.foreach_get("center", centres)
     to_frame = np.array(frame_world(scene, frame).inverted() @ placed)
-    in_frame = centres.reshape(-1, 3).astype(np.float64) @ to_frame[:3, :3].T + to_frame[:3, 3]
-    keep = painter.faces_in_region(in_frame, low, high)
+
+    def in_frame(collection, attribute, count):
+        values = np.empty(count * 3, np.float32)
+        collection.foreach_get(attribute, values)
+        return values.reshape(-1, 3).astype(np.float64) @ to_frame[:3, :3].T + to_frame[:3, 3]
+
+    centres = in_frame(mesh.polygons, "center", len(mesh.polygons))
+    points = in_frame(mesh.vertices, "co", len(mesh.vertices))
+    corner_vertex = np.empty(len(mesh.loops), np.int32)
+    mesh.loops.foreach_get("vertex_index", corner_vertex)
+    sizes = np.empty(len(mesh.polygons), np.int32)
+    mesh.polygons.foreach_get("loop_total", sizes)
+    corner_face = np.repeat(np.arange(len(sizes)), sizes)
+    low, high = painter.region_for_faces(points[corner_vertex], corner_face, centres, low, high)
+    keep = painter.faces_in_region(centres, low, high)
     patch = find_object(scene, own.PATCH, terrain)
     if not keep.any():
         bpy.data.meshes.remove(mesh)
         if patch is not None:
             bpy.data.objects.remove(patch)
-        return None
+        return None, (low, high)
     _keep_faces(mesh, keep)
     mesh.name = f"{terrain.name} Footprint Patch"
     if patch is None:
@@ -118,7 +131,7 @@ def ensure_patch(scene, terrain, frame, low, high, collection, pixel_size=1.0):
     patch.matrix_parent_inverse.identity()
     patch.matrix_basis.identity()
     patch.hide_select = True  # it follows the terrain; edit the terrain and paint again
-    return patch
+    return patch, (low, high)
 
 
 def _keep_faces(mesh, keep):

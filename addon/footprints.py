@@ -344,7 +344,8 @@ def paint(scene, settings, progress=None):
         "Wind": tuple(scene.sandscape_atmosphere.wind)})
     low, high = region_box(image)
     collection = terrain.users_collection[0] if terrain.users_collection else scene.collection
-    patch = ensure_patch(scene, terrain, frame, low, high, collection, settings.dicing_pixel_size)
+    patch, (low, high) = ensure_patch(scene, terrain, frame, low, high, collection,
+                                      settings.dicing_pixel_size)
     ensure_cut(terrain, frame, low, high)
     return {"prints": len(points["co"]), "skipped": int(points_obj.get("skipped", 0)), "emitted": emitted,
             "image": image, "size": (region.width, region.height), "texel": region.texel,

@@ -306,6 +306,16 @@ def revealed_height(image, depth, rim, frame, frame_range, margin=1e-3, refill=0
     return (rgb[..., 1] * f(rim) - rgb[..., 0] * f(depth)) * born * left
 
 
+def region_for_faces(corners_xy, corner_face, face_centres, low, high):
+    """The X-Y box grown so that every face reaching into (low, high) has its centre inside:
+    by the largest distance, per axis, from a face's centre to its corners. A coarse terrain's
+    faces are wider than a narrow trail's region, and their centres fall outside it.
+    corners_xy: (L, 2) each corner's point; corner_face: (L,) its face's index."""
+    reach = np.abs(np.asarray(corners_xy)[:, :2] - np.asarray(face_centres)[np.asarray(corner_face), :2])
+    grow = reach.max(axis=0) if len(reach) else np.zeros(2)
+    return np.asarray(low, np.float64)[:2] - grow, np.asarray(high, np.float64)[:2] + grow
+
+
 def faces_in_region(face_centres, low, high):
     """Twin of node group Sandscape Region Cut: faces whose centre lies in the X-Y box."""
     xy = np.asarray(face_centres)[:, :2]

@@ -100,6 +100,28 @@ def test_cut_and_patch_share_every_face_once(sandscape, walk):
     assert len(terrain.polygons) == (~inside).sum() and len(patch.polygons) == inside.sum()
 
 
+@pytest.mark.parametrize("cells", [40, 1])
+def test_a_coarse_terrain_gets_a_patch_under_every_print(sandscape, cells):
+    """A 40 m terrain of 1 m faces (or one face) and a trail 1 m wide: the faces' centres lie outside
+    the prints' region, yet every face a print reaches is in the patch, and cut from the terrain."""
+    terrain = scenes.height_field(40.0, cells, name="Their Sand")
+    walker = straight(length=10.0, frames=90)
+    scenes.footprint_settings(terrain, walker, (1, 90), resolution=1024)
+    assert bpy.ops.sandscape.paint_footprints() == {"FINISHED"}
+    patches = ours("patch")
+    assert len(patches) == 1
+    faces = [[patches[0].data.vertices[i].co.xy for i in p.vertices] for p in patches[0].data.polygons]
+    boxes = np.array([[np.min(f, axis=0), np.max(f, axis=0)] for f in faces])
+    markers = ours("points")[0]
+    prints = np.array([v.co.xy for v in markers.data.vertices])
+    assert len(prints) > 10
+    covered = [np.any(np.all((boxes[:, 0] <= xy) & (xy <= boxes[:, 1]), axis=1)) for xy in prints]
+    assert all(covered)
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    left = len(terrain.evaluated_get(depsgraph).data.polygons)
+    assert left + len(patches[0].data.polygons) == len(terrain.data.polygons)
+
+
 def test_frame_driver_runs_without_python_auto_run(sandscape, walk):
     bpy.ops.sandscape.paint_footprints()
     material = walk.terrain.active_material

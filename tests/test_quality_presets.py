@@ -67,7 +67,8 @@ def test_sharp_pixel_filter_is_an_option_and_is_reported(sandscape):
     assert result == {"FINISHED"} and cycles.samples == sandscape.addon.presets.PRESETS["DRAFT"]["samples"]
     assert (cycles.pixel_filter_type, cycles.filter_width) == ("GAUSSIAN", pytest.approx(2.5))
     assert "filter" not in reports[-1][1]
-    result, reports = operators.run_execute("sandscape.apply_quality_preset", preset="PREVIEW", sharp_pixels=True)
+    result, reports = operators.run_execute("sandscape.apply_quality_preset", preset="PREVIEW",
+                                            sharp_pixels=True)
     assert result == {"FINISHED"} and cycles.samples == sandscape.addon.presets.PRESETS["PREVIEW"]["samples"]
     assert (cycles.pixel_filter_type, cycles.filter_width) == ("BLACKMAN_HARRIS", pytest.approx(0.5))
     assert reports[-1][0] == {"INFO"}
