@@ -11,10 +11,11 @@ import numpy as np
 from ..core import footprints as painter
 from ..node_groups import helper as h
 from ..node_groups import region_cut
-from . import compat, evaluation
+from . import compat, evaluation, units
 from . import ownership as own
 from .footprint_terrain import find_cut_modifier, find_object, find_print_map, frame_world, terrain_uncut
 
+EEVEE_EDGE = 0.03  # metres: EEVEE's edge over the prints, fine enough for a print's walls
 # ---------------------------------------------------------------- the print image
 
 def write_print_image(scene, terrain, pixels, region, frame_range):
@@ -126,7 +127,11 @@ def ensure_patch(scene, terrain, frame, low, high, collection, pixel_size=1.0):
         patch.data = mesh
         if old.users == 0:
             bpy.data.meshes.remove(old)
-    patch.modifiers["Adaptive Subdivision"].adaptive_pixel_size = pixel_size
+    subdivision = patch.modifiers["Adaptive Subdivision"]
+    subdivision.adaptive_pixel_size = pixel_size
+    # EEVEE has no adaptive dicing: it displaces the vertices the render levels give.
+    subdivision.render_levels = painter.eevee_levels(points, corner_vertex, corner_face, keep,
+                                                     units.to_units(scene, EEVEE_EDGE))
     patch.parent = terrain
     patch.matrix_parent_inverse.identity()
     patch.matrix_basis.identity()

@@ -26,7 +26,7 @@ from ..node_groups import (
     sand_normal,
 )
 from ..node_groups import helper as h
-from . import evaluation, sparkle_footprint, units
+from . import evaluation, print_lookup, sparkle_footprint, units
 from . import ownership as own
 
 SAND_COLOR = core_sand.SAND_COLOR
@@ -41,7 +41,8 @@ RIPPLE_SETTINGS = {"ripple_wavelength": "Wavelength", "ripple_amplitude": "Ampli
 STRUCTURE_KEY = "sandscape_structure"  # look / glints / source / ripples of the tree built
 # Node names inside our material.
 PRINT_SPACE, PRINT_REGION = "Sandscape Print Space", "Sandscape Print Region"
-PRINT_MAP = "Sandscape Print Map"
+PRINT_MAP, PRINT_TEXELS, PRINT_CORNERS, PRINT_BLEND = (
+    print_lookup.PRINT_MAP, print_lookup.PRINT_TEXELS, print_lookup.PRINT_CORNERS, print_lookup.PRINT_BLEND)
 GLINT_NOISE, GLINTS_ADDED = "Sandscape Glint Noise", "Sandscape Sand + Glints"
 RIPPLE_DISPLACEMENT = "Sandscape Ripple Displacement"
 GLINT_AOV_NODE = "Sandscape Glint AOV"
@@ -344,7 +345,7 @@ def _footprint_state(material):
     node = footprint_node(material)
     if node is None or not node.inputs["Print Map"].is_linked:
         return None
-    texture = node.inputs["Print Map"].links[0].from_node
+    texture = own.node(material.node_tree, PRINT_MAP)
     values = {socket.name: socket.default_value for socket in node.inputs
               if not socket.is_linked and socket.name != "Frame" and hasattr(socket, "default_value")}
     values = {name: tuple(v) if hasattr(v, "__len__") else v for name, v in values.items()}
@@ -368,25 +369,25 @@ def attach_footprints(material, image, space_object, values):
         coords = h.add_node(tree, "ShaderNodeTexCoord", name=PRINT_SPACE, label="Print Space")
         mapping = h.add_node(tree, "ShaderNodeMapping", name=PRINT_REGION, label="Print Region",
                              vector_type="POINT")
-        texture = h.add_node(tree, "ShaderNodeTexImage", name=PRINT_MAP, label="Print Map",
-                             interpolation="Linear", extension="CLIP")
         node = h.add_node(tree, "ShaderNodeGroup", name="Sandscape Footprints", label="Footprints",
                           node_tree=h.ensure_group(footprint_height))
         h.link(tree, coords.outputs["Object"], mapping.inputs["Vector"])
-        h.link(tree, mapping.outputs["Vector"], texture.inputs["Vector"])
-        h.link(tree, texture.outputs["Color"], node.inputs["Print Map"])
         h.link(tree, coords.outputs["Object"], node.inputs["Vector"])
         h.link(tree, node.outputs["Displacement"], output.inputs["Displacement"])
         evaluation.drive_by_frame(node.inputs["Frame"])
         if own.node(tree, RIPPLE_DISPLACEMENT) is not None:  # prints and ripples displace together
             _ripple_displacement(material, False)
             _ripple_displacement(material, True)
+    mapping = own.node(tree, PRINT_REGION)
+    coords = own.node(tree, PRINT_SPACE)
+    if own.node(tree, PRINT_BLEND) is None:  # new, or one Linear lookup (Sandscape before 2026-11-25)
+        print_lookup.build(tree, mapping, node)
         h.arrange(tree, set_widths=False)
-    texture = node.inputs["Print Map"].links[0].from_node
-    mapping = texture.inputs["Vector"].links[0].from_node
-    coords = mapping.inputs["Vector"].links[0].from_node
     coords.object = space_object
-    texture.image = image
+    corners = own.node(tree, PRINT_CORNERS)
+    corners.inputs["Width"].default_value, corners.inputs["Height"].default_value = image.size
+    for name in PRINT_TEXELS:
+        own.node(tree, name).image = image
     low, size = image["region_min"], image["region_size"]
     mapping.inputs["Location"].default_value = (-low[0] / size[0], -low[1] / size[1], 0.0)
     mapping.inputs["Scale"].default_value = (1.0 / size[0], 1.0 / size[1], 1.0)

@@ -316,6 +316,23 @@ def region_for_faces(corners_xy, corner_face, face_centres, low, high):
     return np.asarray(low, np.float64)[:2] - grow, np.asarray(high, np.float64)[:2] + grow
 
 
+def eevee_levels(points, corner_vertex, corner_face, keep, edge, most=6):
+    """Subdivision levels (each halves an edge) that bring the longest edge of the kept faces
+    down to `edge`, at most `most`: EEVEE displaces only the vertices it is given."""
+    corner_vertex, corner_face = np.asarray(corner_vertex), np.asarray(corner_face)
+    following = np.roll(np.arange(len(corner_vertex)), -1)
+    starts = np.flatnonzero(np.r_[True, corner_face[1:] != corner_face[:-1]])
+    ends = np.r_[starts[1:], len(corner_vertex)] - 1
+    following[ends] = starts  # a face's last corner closes on its first
+    lengths = np.linalg.norm(np.asarray(points)[corner_vertex[following]] - np.asarray(points)[corner_vertex],
+                             axis=1)
+    kept = np.asarray(keep)[corner_face]
+    longest = lengths[kept].max() if kept.any() else 0.0
+    if not longest > edge > 0:
+        return 0
+    return int(min(most, np.ceil(np.log2(longest / edge))))
+
+
 def faces_in_region(face_centres, low, high):
     """Twin of node group Sandscape Region Cut: faces whose centre lies in the X-Y box."""
     xy = np.asarray(face_centres)[:, :2]

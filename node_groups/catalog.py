@@ -25,6 +25,8 @@ from . import (
     ripples,
     sand_normal,
     sun_place,
+    texel_blend,
+    texel_corners,
     weather_map,
 )
 
@@ -51,6 +53,8 @@ GROUPS = (
     (sun_place, "Post Effects"),
     (region_cut, None),
     (print_markers, None),
+    (texel_corners, None),
+    (texel_blend, None),
 )
 
 

@@ -138,7 +138,7 @@ def test_frame_driver_runs_without_python_auto_run(sandscape, walk):
         bpy.context.scene.frame_set(23)
         node = sandscape.addon.sand.footprint_node(material)
         assert node.inputs["Frame"].default_value == pytest.approx(23.0, abs=1e-6)
-        image = node.inputs["Print Map"].links[0].from_node.image
+        image = material.node_tree.nodes[sandscape.addon.sand.PRINT_MAP].image
         assert image.packed_file is not None and image.is_float
     finally:
         preferences.use_scripts_auto_execute = kept

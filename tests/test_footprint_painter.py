@@ -258,3 +258,18 @@ def test_the_wind_fills_windward_prints_faster():
             for normal in ((0, 0, 1), facing_plus_x)]
     assert left[0][0, 0] == pytest.approx(-0.03 * math.exp(-1.0), rel=1e-5)
     assert left[1][0, 0] == pytest.approx(-0.03 * math.exp(-(1 + 2 * math.tan(tilt)) ** 3), rel=1e-4)
+
+
+def test_eevee_levels_halve_the_longest_kept_edge_to_the_target():
+    """Two faces: a 1 m square (kept or not) and a 0.5 m square; levels halve the longest kept edge
+    until it is at most the target, capped."""
+    points = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0],
+                       [2, 0, 0], [2.5, 0, 0], [2.5, 0.5, 0], [2, 0.5, 0]], float)
+    corner_vertex = np.arange(8)
+    corner_face = np.repeat([0, 1], 4)
+    levels = fp.eevee_levels
+    assert levels(points, corner_vertex, corner_face, [True, True], 0.03) == 6  # 1 m / 2^6 = 1.6 cm
+    assert levels(points, corner_vertex, corner_face, [False, True], 0.03) == 5  # 0.5 m / 2^5
+    assert levels(points, corner_vertex, corner_face, [True, True], 0.01) == 6  # the cap
+    assert levels(points, corner_vertex, corner_face, [True, True], 2.0) == 0
+    assert levels(points, corner_vertex, corner_face, [False, False], 0.03) == 0
