@@ -15,11 +15,13 @@ from . import glint_facet
 from . import helper as h
 
 NAME = "Sandscape Glint Cells"
-VERSION = 1
+VERSION = 2
 TREE_TYPE = "ShaderNodeTree"
 DESCRIPTION = ("Cells of glinting grains sized to the pixel's footprint: a sparkle covers at most one "
                "pixel, near or far; per cell a seeded noise, a tilt, the level's threshold and weight")
 
+MAX_PIXEL_ANGLE = 1.0  # bounds for the driven inputs typed by hand (radians; the object's units)
+MAX_PIXEL_SIZE = 1e6
 INPUTS = {  # name -> (type, description, default, min, max, subtype); append only
     "Glint Size": ("NodeSocketFloat", "Edge of a grain's cell in the object's own units (scaling the "
                    "object scales it)", 0.003, 0.0, None, "DISTANCE"),
@@ -44,15 +46,16 @@ OUTPUTS = {
 def _footprint(tree, inputs):
     """The pixel's footprint at the shaded point, in the object's units."""
     camera = h.add_node(tree, "ShaderNodeCameraData")
-    world = h.math(tree, "MULTIPLY_ADD", camera.outputs["View Distance"], inputs["Pixel Angle"],
+    angle, angle_nodes = h.finite(tree, inputs["Pixel Angle"], MAX_PIXEL_ANGLE, label="Pixel Angle, Finite")
+    size, size_nodes = h.finite(tree, inputs["Pixel Size"], MAX_PIXEL_SIZE, label="Pixel Size, Finite")
+    world = h.math(tree, "MULTIPLY_ADD", camera.outputs["View Distance"], angle, c=size,
                    label="Footprint (world)")
-    h.link(tree, inputs["Pixel Size"], world.inputs[2])
     # The object's scale: a diagonal unit vector carried to world space (exact for uniform scale).
     diagonal = h.add_node(tree, "ShaderNodeVectorTransform", label="Object Scale", vector_type="VECTOR",
                           convert_from="OBJECT", convert_to="WORLD", inputs={"Vector": (0.57735027,) * 3})
     scale = h.vector_math(tree, "LENGTH", diagonal.outputs[0], label="|Scale|")
     footprint = h.math(tree, "DIVIDE", world.outputs[0], scale.outputs["Value"], label="Footprint")
-    return footprint.outputs[0], (camera, world, diagonal, scale, footprint)
+    return footprint.outputs[0], (camera, *angle_nodes, *size_nodes, world, diagonal, scale, footprint)
 
 
 def build(tree):

@@ -20,7 +20,7 @@ from . import glint_cells
 from . import helper as h
 
 NAME = "Sandscape Glint Splat"
-VERSION = 2
+VERSION = 3
 TREE_TYPE = "ShaderNodeTree"
 DESCRIPTION = ("Sparkles as points put into the pixels round them, the same for every sample of a pixel: "
                "the four cells that can reach this pixel, their noise, tilt and share of it")
@@ -84,11 +84,6 @@ class _Nodes:
             else:
                 h.link(self.tree, value, node.inputs[index])
         return node.outputs[0]
-
-
-def _finite(n, value, top, label):
-    """A typed NaN or infinity made a number in [0, top] (Cycles' max and min drop a NaN)."""
-    return n.m("MINIMUM", n.m("MAXIMUM", value, 0.0), top, label=label)
 
 
 def _pixel_centre(n, inputs):
@@ -157,7 +152,8 @@ def build(tree):
     inputs = {socket.name: socket for socket in group_in.outputs if socket.name}
     for name, top in (("Resolution X", MAX_PIXELS), ("Resolution Y", MAX_PIXELS), ("Pixel Angle", 1.0),
                       ("Pixel Size", MAX_PIXEL_SIZE)):
-        inputs[name] = _finite(n, inputs[name], top, f"{name}, Finite")
+        inputs[name], bounds = h.finite(tree, inputs[name], top, f"{name}, Finite")
+        n.made += bounds
     centre_c, steps_c, centre_nodes = _pixel_centre(n, inputs)
 
     # To the object's space, on the lattice of the plane the normal leans least from.

@@ -88,6 +88,15 @@ def math(tree, operation, a=None, b=None, location=(0, 0), label=None, c=None):
     return _operands(tree, add_node(tree, "ShaderNodeMath", location, label, operation=operation), a, b, c)
 
 
+def finite(tree, value, top, label=None):
+    """A driven input typed by hand as NaN or infinity made a number in [0, top]. Returns the socket
+    and the two nodes. The bound goes first: Cycles' CPU max and min keep a NaN in their first input
+    and drop it in the second (the GPU's drop it in either)."""
+    low = math(tree, "MAXIMUM", 0.0, value)
+    high = math(tree, "MINIMUM", top, low.outputs[0], label=label)
+    return high.outputs[0], (low, high)
+
+
 def vector_math(tree, operation, a=None, b=None, label=None, c=None, **inputs):
     """A Vector Math node whose first three inputs are sockets (linked) or values (defaults)."""
     node = add_node(tree, "ShaderNodeVectorMath", label=label, operation=operation, inputs=inputs)
