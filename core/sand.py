@@ -2,6 +2,8 @@
 
 glint_facets        <-> "Sandscape Glint Facet" / "Sandscape Lit Glints": which grains can glint
                         and which way each grain's mirror facet faces
+mirrors_view_above  <-> "Sandscape Glint Facet": whether a facet's mirror is seen (the view it
+                        mirrors leaves the surface)
 sand_normal         <-> "Sandscape Sand Normal": the surface normal nudged towards a random
                         direction per grain (Journey's sand normal, an nlerp)
 journey_contrast        the seed's own diffuse contrast, saturate(4 N'.L), N' the normal with
@@ -58,6 +60,15 @@ def glint_facets(noise, tilt, normal, threshold, power):
     lean = 2.0 * np.asarray(tilt, np.float64) - 1.0
     lean = lean - np.sum(lean * normal, axis=-1, keepdims=True) * normal
     return mask, _unit(normal + facet_spread(power) * lean)
+
+
+def mirrors_view_above(facet, normal, view):
+    """1 where a facet mirrors the view direction (unit, towards the camera) above the surface:
+    R·N = 2 (F·V)(F·N) − V·N > 0. Elsewhere the grains around the facet hide what it mirrors."""
+    f_v = np.sum(np.asarray(facet, np.float64) * np.asarray(view, np.float64), axis=-1)
+    f_n = np.sum(np.asarray(facet, np.float64) * np.asarray(normal, np.float64), axis=-1)
+    v_n = np.sum(np.asarray(view, np.float64) * np.asarray(normal, np.float64), axis=-1)
+    return (2.0 * f_v * f_n - v_n > 0.0).astype(F32)
 
 
 def sand_normal(normal, grain, strength):

@@ -3,7 +3,9 @@
 A grain whose Noise exceeds Threshold is a mirror facet (a sharp Glossy BSDF) turned from the
 surface normal by a random Tilt, at most as far as Facing Power allows: the facet glints only
 where a light reaches it and its mirror sends that light to the camera, so shadows, the sun's
-colour and its height apply by construction. Other grains show the Base shader.
+colour and its height apply by construction. Other grains show the Base shader, and so does a facet
+whose mirror would send the view below the surface: the grains around it hide what it mirrors
+(EEVEE would show the world under the horizon there, dark specks on far sand).
 Twin: core.sand.glint_facets (mask and facet normal).
 """
 
@@ -11,7 +13,7 @@ from ..core import sand
 from . import helper as h
 
 NAME = "Sandscape Glint Facet"
-VERSION = 2
+VERSION = 3
 TREE_TYPE = "ShaderNodeTree"
 DESCRIPTION = ("A glinting grain as a mirror facet: Noise above Threshold shows a sharp glossy facet "
                "tilted by Tilt within the spread Facing Power allows; other grains show Base")
@@ -40,6 +42,8 @@ OUTPUTS = {
     "Shader": ("NodeSocketShader", "Base, with glinting grains as mirror facets"),
     "Mask": ("NodeSocketFloat", "1 on grains that can glint, 0 elsewhere"),
     "Facet Normal": ("NodeSocketVector", "The facet's normal (the surface normal on other grains too)"),
+    "Mirror": ("NodeSocketFloat", "Share of the surface the facet's mirror shows: Coverage on a grain "
+               "that can glint and mirrors the view above the surface, else 0"),
 }
 
 
@@ -76,7 +80,9 @@ def build(tree):
     h.link(tree, inputs["Color"], mirror.inputs["Color"])
     h.link(tree, inputs["Roughness"], mirror.inputs["Roughness"])
     h.link(tree, facet.outputs[0], mirror.inputs["Normal"])
-    covered = h.math(tree, "MULTIPLY", lit.outputs[0], inputs["Coverage"], label="× Coverage")
+    above, above_nodes = _mirrors_above(tree, facet.outputs[0], normal)
+    can = h.math(tree, "MULTIPLY", lit.outputs[0], above, label="Can Glint, Seen")
+    covered = h.math(tree, "MULTIPLY", can.outputs[0], inputs["Coverage"], label="× Coverage")
     mix = h.add_node(tree, "ShaderNodeMixShader", label="Base or Facet")
     h.link(tree, covered.outputs[0], mix.inputs["Fac"])
     h.link(tree, inputs["Base"], mix.inputs[1])
@@ -85,9 +91,26 @@ def build(tree):
     h.link(tree, mix.outputs[0], group_out.inputs["Shader"])
     h.link(tree, lit.outputs[0], group_out.inputs["Mask"])
     h.link(tree, facet.outputs[0], group_out.inputs["Facet Normal"])
+    h.link(tree, covered.outputs[0], group_out.inputs["Mirror"])
     h.frame(tree, "Surface Normal", normal_nodes)
     h.frame(tree, "Which Grains", (lit,))
     h.frame(tree, "How Far a Facet Leans", (power, inverse, half_cos, cosine, squared, sine_sq, sine, spread))
     h.frame(tree, "Facet", (centred, up, upright, sideways, lean, tilted, facet, mirror))
-    h.frame(tree, "Mirror on the Grain", (covered, mix))
+    h.frame(tree, "Mirrors the View Above the Surface", above_nodes)
+    h.frame(tree, "Mirror on the Grain", (can, covered, mix))
     h.arrange(tree)
+
+
+def _mirrors_above(tree, facet, normal):
+    """1 where the view mirrored by the facet leaves the surface: R·N = 2 (F·V)(F·N) − V·N > 0,
+    V the direction to the camera. Returns the socket and the nodes."""
+    geometry = h.add_node(tree, "ShaderNodeNewGeometry")
+    view = geometry.outputs["Incoming"]
+    f_v = h.vector_math(tree, "DOT_PRODUCT", facet, view, label="F·V")
+    f_n = h.vector_math(tree, "DOT_PRODUCT", facet, normal, label="F·N")
+    v_n = h.vector_math(tree, "DOT_PRODUCT", view, normal, label="V·N")
+    twice = h.math(tree, "MULTIPLY", f_v.outputs["Value"], f_n.outputs["Value"], label="(F·V)(F·N)")
+    negate = h.math(tree, "MULTIPLY", v_n.outputs["Value"], -1.0, label="−V·N")
+    r_n = h.math(tree, "MULTIPLY_ADD", twice.outputs[0], 2.0, c=negate.outputs[0], label="R·N")
+    above = h.math(tree, "GREATER_THAN", r_n.outputs[0], 0.0, label="Above the Surface")
+    return above.outputs[0], (geometry, f_v, f_n, v_n, twice, negate, r_n, above)

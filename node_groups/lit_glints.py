@@ -14,7 +14,7 @@ from . import glint_cells, glint_facet, glint_splat
 from . import helper as h
 
 NAME = "Sandscape Lit Glints"
-VERSION = 4
+VERSION = 5
 TREE_TYPE = "ShaderNodeTree"
 DESCRIPTION = ("Sparkling sand lit by the sun: cells of grains sized to the pixel's footprint, a seeded "
                "random value per cell, mirror facets above Threshold that glint only where light "
@@ -64,11 +64,16 @@ def build(tree):
     h.link(tree, splat.outputs["Active"], h.socket(either.inputs, "Factor"))
     h.link(tree, mask.outputs[0], h.socket(either.inputs, "A"))
     h.link(tree, splat_mask[1], h.socket(either.inputs, "B"))
+    shown = h.add_node(tree, "ShaderNodeMix", label="Mirror Shown: Cells or Splat")
+    h.link(tree, splat.outputs["Active"], h.socket(shown.inputs, "Factor"))
+    h.link(tree, facet.outputs["Mirror"], h.socket(shown.inputs, "A"))
+    h.link(tree, splat_mask[2], h.socket(shown.inputs, "B"))
+    h.link(tree, h.socket(shown.outputs, "Result"), group_out.inputs["Mirror"])
     h.link(tree, choose.outputs[0], group_out.inputs["Shader"])
     h.link(tree, h.socket(either.outputs, "Result"), group_out.inputs["Mask"])
     h.link(tree, facet.outputs["Facet Normal"], group_out.inputs["Facet Normal"])
     h.frame(tree, "Sparkles Put into Their Pixels", splat_nodes)
-    h.frame(tree, "Which Applies", (choose, either))
+    h.frame(tree, "Which Applies", (choose, either, shown))
     h.arrange(tree)
 
 
@@ -78,7 +83,7 @@ def _splat(tree, inputs):
     splat = h.add_node(tree, "ShaderNodeGroup", node_tree=h.ensure_group(glint_splat), label="Glint Splat")
     for name in glint_splat.INPUTS:
         h.link(tree, inputs[name], splat.inputs[name])
-    made, total, shader = [splat], None, None
+    made, total, shown, shader = [splat], None, None, None
     for k in glint_splat.CANDIDATES:
         facet = h.add_node(tree, "ShaderNodeGroup", node_tree=h.ensure_group(glint_facet), label=f"Facet {k}")
         h.link(tree, splat.outputs[f"Noise {k}"], facet.inputs["Noise"])
@@ -88,22 +93,24 @@ def _splat(tree, inputs):
         for name in FACET_SOCKETS:
             h.link(tree, inputs[name], facet.inputs[name])
         made.append(facet)
-        amount = splat.outputs[f"Amount {k}"]
+        amount, mirror = splat.outputs[f"Amount {k}"], facet.outputs["Mirror"]
         if total is None:
-            total, shader = amount, facet.outputs["Shader"]
+            total, shown, shader = amount, mirror, facet.outputs["Shader"]
             continue
-        add = h.math(tree, "ADD", total, amount, label="Mirror Share")
+        add = h.math(tree, "ADD", total, amount, label="Can Glint")
+        add_shown = h.math(tree, "ADD", shown, mirror, label="Mirror Shown")
         both = h.add_node(tree, "ShaderNodeAddShader", label="+ Facet")
         h.link(tree, shader, both.inputs[0])
         h.link(tree, facet.outputs["Shader"], both.inputs[1])
-        made += [add, both]
-        total, shader = add.outputs[0], both.outputs[0]
-    # The sand keeps what the mirrors do not cover (an unlinked shader input adds nothing).
+        made += [add, add_shown, both]
+        total, shown, shader = add.outputs[0], add_shown.outputs[0], both.outputs[0]
+    # The sand keeps what the mirrors shown do not cover (an unlinked shader input adds nothing);
+    # the mask counts every grain that can glint.
     sand = h.add_node(tree, "ShaderNodeMixShader", label="Sand Under the Mirrors")
-    h.link(tree, total, sand.inputs["Fac"])
+    h.link(tree, shown, sand.inputs["Fac"])
     h.link(tree, inputs["Base"], sand.inputs[1])
     both = h.add_node(tree, "ShaderNodeAddShader", label="Sand + Facets")
     h.link(tree, sand.outputs[0], both.inputs[0])
     h.link(tree, shader, both.inputs[1])
     made += [sand, both]
-    return splat, (both.outputs[0], total), made
+    return splat, (both.outputs[0], total, shown), made

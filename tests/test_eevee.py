@@ -79,3 +79,35 @@ def test_prints_displace_in_eevee(eevee_scene, sandscape):
     changed = np.abs(pressed - flat)[..., :3].max(-1) > 0.05
     print(f"EEVEE: prints change {changed.sum()} of {changed.size} pixels")
     assert np.isfinite(pressed).all() and changed.sum() >= 0.015 * changed.size  # 2.2 % when written
+
+
+@pytest.mark.parametrize("resolution", [SIZE, (0, 0)], ids=["splat", "cells"])
+def test_no_glint_facet_mirrors_the_world_under_the_horizon(eevee_scene, sandscape, resolution):
+    """Every grain a sharp mirror over a black base at a low angle, under a world white below the
+    horizon only. Cycles bends a reflection that would leave through the ground; EEVEE mirrors the
+    world there (dark specks under a real sky). A facet that mirrors the view into the ground shows
+    the base: the sand stays black (without that, 30 % of its pixels were bright with the splat and
+    99 % with the cells)."""
+    world = bpy.data.worlds.new("White Below the Horizon")
+    eevee_scene.world = world
+    tree = world.node_tree
+    tree.nodes.clear()
+    direction = tree.nodes.new("ShaderNodeTexCoord").outputs["Generated"]  # the ray's direction
+    split = tree.nodes.new("ShaderNodeSeparateXYZ")
+    helper = sandscape.node_groups.helper
+    below = helper.math(tree, "LESS_THAN", split.outputs["Z"], 0.0)
+    background = tree.nodes.new("ShaderNodeBackground")
+    tree.links.new(direction, split.inputs[0])
+    tree.links.new(below.outputs[0], background.inputs["Strength"])
+    tree.links.new(background.outputs[0], tree.nodes.new("ShaderNodeOutputWorld").inputs["Surface"])
+    eevee_scene.view_settings.view_transform = "Standard"
+    bpy.ops.mesh.primitive_plane_add(size=80)
+    ground = bpy.context.active_object
+    scenes.camera("PERSP", location=(0.0, -12.0, 1.6), rotation=(math.radians(80), 0.0, 0.0))
+    group = helper.ensure_group(sandscape.node_groups.lit_glints)
+    values = {"Threshold": 0.0, "Glint Size": 0.01, "Facing Power": 1.0, "Roughness": 0.0,
+              "Resolution X": resolution[0], "Resolution Y": resolution[1], "Pixel Angle": 0.01}
+    ground.data.materials.append(scenes.group_material(group, values, "Shader"))
+    sand = readback.render(eevee_scene)[: SIZE[1] // 3, :, :3]  # rows well below the horizon
+    print(f"EEVEE, {resolution}: sand mean {sand.mean():.4f}, brightest {sand.max():.3f}")
+    assert np.isfinite(sand).all() and sand.max() <= 0.05

@@ -56,6 +56,20 @@ def test_facets_lean_as_the_twin_says(lit_group, power):
     assert tilt_angle.max() <= np.degrees(np.arctan(twin.facet_spread(power) * np.sqrt(2))) + 1e-3
 
 
+@pytest.mark.parametrize("power", [1.0, 2.0])
+def test_a_facet_that_mirrors_the_view_into_the_ground_shows_the_sand(lit_group, power):
+    """The baker looks along the normal (V = N): a facet's mirror is seen where it leans under 45
+    degrees (R·N = 2 (F·N)² − 1 > 0), as the twin says. Wide spreads, so both kinds are many."""
+    values = {"Threshold": 0.0, "Glint Size": 1 / 16, "Seed": 7.0, "Facing Power": power}
+    baked = bake(lit_group, values, "Mirror")[..., 0]
+    noise, tilt = twin.glint_cells(plane_positions(), 1 / 16, 7)
+    _, facets = twin.glint_facets(noise, tilt, (0.0, 0.0, 1.0), 0.0, power)
+    expected = twin.mirrors_view_above(facets, (0.0, 0.0, 1.0), (0.0, 0.0, 1.0))
+    print(f"facets seen: {baked.mean():.1%} (twin {expected.mean():.1%})")
+    assert 0.1 < expected.mean() < 0.9
+    assert np.abs(baked - expected).max() <= BAKE_TOLERANCE
+
+
 def test_the_share_of_grains_that_can_glint_follows_threshold(lit_group):
     """Cells of 1 px over 128 x 128 bake points: each point its own grain."""
     for threshold in (0.5, 0.9, 0.98):
