@@ -111,3 +111,47 @@ def test_no_glint_facet_mirrors_the_world_under_the_horizon(eevee_scene, sandsca
     sand = readback.render(eevee_scene)[: SIZE[1] // 3, :, :3]  # rows well below the horizon
     print(f"EEVEE, {resolution}: sand mean {sand.mean():.4f}, brightest {sand.max():.3f}")
     assert np.isfinite(sand).all() and sand.max() <= 0.05
+
+
+@pytest.mark.parametrize("glints", ["LIT", "EMISSION"])
+def test_glints_in_the_sun_and_the_shade_in_eevee(eevee_scene, sandscape, glints):
+    """The Cycles test's scene in EEVEE: lit glints sparkle where the sun reaches and not in the
+    roof's shadow; emission glints (the test can tell) sparkle in both."""
+    from test_lit_glints import glinting_ground, glints_half_in_shadow
+
+    if glints == "LIT":
+        glinting_ground(sandscape, threshold=0.7, glint_size=0.15, facing_power=64.0)
+    else:
+        glinting_ground(sandscape, glints="EMISSION", threshold=0.7, glint_size=0.15, facing_power=0.0,
+                        strength=600.0)
+    shown = glints_half_in_shadow("BLENDER_EEVEE")
+    sunlit, shaded = shown[:, 56:].mean(), shown[:, :40].mean()
+    print(f"EEVEE, {glints.lower()} glints: {sunlit:.2%} of sunlit pixels, {shaded:.2%} of shaded")
+    assert sunlit > 0.01
+    if glints == "LIT":
+        assert shaded <= 0.1 * sunlit
+    else:
+        assert shaded > 0.5 * sunlit
+
+
+def test_dust_transmittance_per_channel_in_eevee(eevee_scene, sandscape):
+    """The Cycles test's slab in EEVEE: the glow seen through 1 m of dust is exp(-beta d) per channel
+    (EEVEE integrates the slab in its froxel grid)."""
+    from test_atmosphere import DENSITY, THICKNESS, camera_only_emitter
+
+    from core import atmosphere as air
+
+    camera_only_emitter()
+    beta = air.rayleigh_coefficients(DENSITY)
+    box = ((-2.0, -2.0, 0.5), (2.0, 2.0, 0.5 + THICKNESS))
+    sandscape.addon.atmosphere.ensure_volume(eevee_scene, beta, *box)
+    eevee_scene.view_settings.view_transform = "Standard"
+    eevee_scene.world = None
+    scenes.camera("ORTHO", location=(0.0, 0.0, 5.0), ortho_scale=1.0)
+    pixels = readback.render(eevee_scene)[..., :3].reshape(-1, 3)
+    expected = air.slab_transmittance(beta, THICKNESS)
+    measured = pixels.mean(axis=0)
+    print(f"EEVEE transmittance {measured.round(4)}, exp(-beta d) {np.round(expected, 4)}")
+    assert np.isfinite(pixels).all()
+    assert np.abs(measured / expected - 1.0).max() < 0.01, (measured, expected)  # 0.7 % when written
+    assert measured[2] < measured[1] < measured[0]

@@ -106,14 +106,14 @@ def glint_pixels(pixels):
     return brightness > 4.0 * np.median(brightness)
 
 
-def glints_half_in_shadow():
+def glints_half_in_shadow(engine="CYCLES"):
     """Glint pixels of the ground seen from the sun's mirror direction, with a roof high above the
     left half (hidden from the camera) casting its shadow over x < 0."""
     bpy.ops.mesh.primitive_plane_add(size=1, location=(-10.0, 0.0, 6.0))
     roof = bpy.context.active_object
     roof.scale = (20.0, 40.0, 1.0)
     roof.visible_camera = False
-    readback.cycles_scene(resolution=(96, 96), samples=4)
+    readback.cycles_scene(resolution=(96, 96), samples=4).render.engine = engine
     scenes.camera("ORTHO", location=(0.0, -10.0, 10.0), rotation=(math.radians(45), 0.0, 0.0),
                   ortho_scale=5.0)
     return glint_pixels(readback.render())
