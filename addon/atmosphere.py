@@ -18,7 +18,7 @@ from ..core import sun as sky_sun
 from ..core.clouds import layer_region as holding_region
 from ..node_groups import dust_field, dust_volume
 from ..node_groups import helper as h
-from . import drivers, evaluation, sand, shot, units
+from . import drivers, evaluation, sand, sand_eevee, shot, units
 from . import ownership as own
 from .sun_lamp import ensure_sun, is_ours, scene_sun  # noqa: F401 (the atmosphere's API)
 
@@ -332,6 +332,7 @@ def apply(scene, settings):
     low, high = bounds or (geometry_low - settings.margin, geometry_high + settings.margin)
     box = ensure_volume(scene, coefficients, low, high, dust)
     sand.set_wind(scene, settings.wind)  # one wind for the dust and the sand's ripples
+    sand_eevee.follow_scene_sun(scene)
     # Volume sampling, like the exposure, is the artist's: the quality presets set it.
     return {"sun": sun, "followed": followed, "elevation": elevation, "azimuth": azimuth, "world": world,
             "volume": box, "coefficients": per_metre, "exposure": exposure, "changes": changes}

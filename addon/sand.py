@@ -26,7 +26,7 @@ from ..node_groups import (
     sand_normal,
 )
 from ..node_groups import helper as h
-from . import evaluation, print_lookup, sparkle_footprint, units
+from . import evaluation, print_lookup, sand_eevee, sparkle_footprint, units
 from . import ownership as own
 
 SAND_COLOR = core_sand.SAND_COLOR
@@ -202,6 +202,8 @@ def update_material(material, values, image=None, look="PHYSICAL", glint_mode="L
             if name in ripple_values:
                 wave.inputs[name].default_value = ripple_values[name]
         _ripple_displacement(material, bool(ripple_values.get("Displacement")))
+    sand_eevee.attach(material, scene if scene is not None else bpy.context.scene, look_node(material),
+                      look == "PHYSICAL")
     return node
 
 
@@ -365,7 +367,7 @@ def attach_footprints(material, image, space_object, values):
     tree = material.node_tree
     node = footprint_node(material)
     if node is None:
-        output = next(n for n in tree.nodes if n.bl_idname == "ShaderNodeOutputMaterial")
+        output = own.node(tree, sand_eevee.CYCLES_OUTPUT)
         coords = h.add_node(tree, "ShaderNodeTexCoord", name=PRINT_SPACE, label="Print Space")
         mapping = h.add_node(tree, "ShaderNodeMapping", name=PRINT_REGION, label="Print Region",
                              vector_type="POINT")
@@ -397,6 +399,7 @@ def attach_footprints(material, image, space_object, values):
     # Displacement and bump: the prints are true geometry, and the shading normal stays the
     # smooth one (true displacement alone shades the adaptive patch by its flat base quads).
     material.displacement_method = "BOTH"
+    sand_eevee.sync(tree)
     return node
 
 

@@ -1,11 +1,13 @@
 """EEVEE beside Cycles on an artist's trail shot (devtools/print_shot.py: flat sand, a painted
 10 m walk, a sun 15 degrees up from the side, eye level): time per frame, the sand's mean display
 colour per distance band against Cycles', and how many pixels the prints change in each engine.
-EEVEE is also timed with the sand's displacement unlinked (issue 27: within 2x of it). EEVEE runs
-on software OpenGL here (the bpy wheel's EGL context): its times are a CPU's, not a GPU's.
+EEVEE is also timed with the sand's displacement unlinked (issue 27: within 2x of it), and the
+sand's brightness is compared at other sun elevations, with the sand's EEVEE output (balanced to
+Cycles) and without it. EEVEE runs on software OpenGL here (the bpy wheel's EGL context): its
+times are a CPU's, not a GPU's.
 Appends the table to bench/RESULTS.md.
 
-Run: .venv/bin/python bench/eevee.py [--width W --height H] [--no-append]
+Run: .venv/bin/python bench/eevee.py [--width W --height H] [--suns 15 45 70] [--no-append]
 """
 
 import argparse
@@ -29,12 +31,14 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--width", type=int, default=320)
     parser.add_argument("--height", type=int, default=180)
+    parser.add_argument("--suns", type=float, nargs="*", default=[15.0, 45.0, 70.0],
+                        help="sun elevations (degrees) for the brightness table")
     parser.add_argument("--no-append", action="store_true")
     args = parser.parse_args(argv)
     root = session.isolate()
     import bpy
 
-    session.install_dev_extension(root)
+    sandscape = session.install_dev_extension(root)
     from devtools import print_shot as shot
     from devtools import readback
 
@@ -56,7 +60,7 @@ def main(argv=None):
     _, seconds["eevee first"] = render("eevee-first")  # shaders compiled
     frames["eevee"], seconds["eevee"] = render("eevee")
     material = bpy.data.materials["Sandscape Sand"]
-    output = next(n for n in material.node_tree.nodes if n.bl_idname == "ShaderNodeOutputMaterial")
+    output = material.node_tree.nodes["Sandscape EEVEE Output"]
     link = output.inputs["Displacement"].links[0]
     source = link.from_socket
     material.node_tree.links.remove(link)
@@ -67,8 +71,22 @@ def main(argv=None):
     frames["eevee flat"], _ = render("eevee-flat")
     scene.render.engine = "CYCLES"
     frames["cycles flat"], _ = render("cycles-flat")
+    dust = next(obj for obj in scene.objects if obj.get("sandscape_object") == "dust_volume")
+    dust.hide_render = True  # what the dusty air adds, in each engine
+    frames["cycles clear"], _ = render("cycles-clear")
+    scene.render.engine = "BLENDER_EEVEE"
+    frames["eevee clear"], _ = render("eevee-clear")
+    scene.render.engine = "CYCLES"
+    dust.hide_render = False
 
     distance = shot.trail_distance(camera)
+    suns = sun_table(bpy, sandscape, scene, args.suns, distance, render)
+    hazes = []
+    for low, high in (*BANDS, (40.0, np.inf)):
+        band = (distance >= low) & (distance < high)
+        added = [frames[f"{k} flat"][band][:, :3].mean() - frames[f"{k} clear"][band][:, :3].mean()
+                 for k in ("cycles", "eevee")]
+        hazes.append((f"{low:g}-{high:g} m" if np.isfinite(high) else f"beyond {low:g} m", *added))
     rows = []
     for low, high in BANDS:
         band = (distance >= low) & (distance < high)
@@ -100,7 +118,48 @@ def main(argv=None):
     lines += ["", f"Prints against the same shot flattened: {changed['cycles']} pixels change in Cycles, "
               f"{changed['eevee']} in EEVEE (of {args.width * args.height}; a display channel moving by "
               f"more than {shot.PIXEL_CHANGE})."]
+    lines += ["", "What the dusty air adds to the ground's display value (the shot against the same without "
+              "its dust box):", "", "| ground | Cycles | EEVEE |", "|---|---|---|"]
+    lines += [f"| {band} | {c:+.3f} | {e:+.3f} |" for band, c, e in hazes]
+    lines += ["", "The sand's brightness in EEVEE against Cycles (display means per band) as the sun "
+              "climbs, with the sand's EEVEE output (balanced to Cycles by the driven sun) and without it:",
+              "", "| sun | " + " | ".join(f"{lo:g}-{hi:g} m" for lo, hi in BANDS) + " |",
+              "|---|" + "---|" * len(BANDS)]
+    for sun, (balanced, plain) in suns:
+        cells = (f"{b:+.1%} ({p:+.1%} without)" for b, p in zip(balanced, plain, strict=True))
+        lines.append(f"| {sun:g}° | " + " | ".join(cells) + " |")
     results.publish(lines, append=not args.no_append)
+
+
+def sun_table(bpy, sandscape, scene, elevations, distance, render):
+    """[(elevation, (balanced ratios per band, ratios without the balance))]."""
+    import math
+
+    from devtools import print_shot as shot
+
+    table = []
+    material = bpy.data.materials["Sandscape Sand"]
+    for elevation in elevations:
+        scene.sandscape_atmosphere.sun_elevation = math.radians(elevation)
+        assert bpy.ops.sandscape.add_atmosphere() == {"FINISHED"}
+        scene.frame_set(shot.LAST_FRAME)
+        frames = {}
+        for key, engine in (("cycles", "CYCLES"), ("eevee", "BLENDER_EEVEE")):
+            scene.render.engine = engine
+            frames[key], _ = render(f"{key}-sun-{elevation:g}")
+        look = sandscape.addon.sand.look_node(material)
+        sandscape.addon.sand_eevee.attach(material, scene, look, False)  # one output for both
+        frames["plain"], _ = render(f"eevee-plain-sun-{elevation:g}")
+        sandscape.addon.sand_eevee.attach(material, scene, look, True)
+        balanced, plain = [], []
+        for low, high in BANDS:
+            band = (distance >= low) & (distance < high)
+            cycles = frames["cycles"][band][:, :3].mean()
+            balanced.append(frames["eevee"][band][:, :3].mean() / cycles - 1)
+            plain.append(frames["plain"][band][:, :3].mean() / cycles - 1)
+        print(f"eevee bench: sun {elevation:g}: {balanced} balanced, {plain} without", flush=True)
+        table.append((elevation, (balanced, plain)))
+    return table
 
 
 if __name__ == "__main__":

@@ -9,6 +9,7 @@ from . import (
     cloud_density,
     dust_field,
     dust_volume,
+    eevee_balance,
     footprint_height,
     gated_blur,
     glint_cells,
@@ -55,6 +56,7 @@ GROUPS = (
     (print_markers, None),
     (texel_corners, None),
     (texel_blend, None),
+    (eevee_balance, None),
 )
 
 

@@ -3,9 +3,10 @@
 A grain whose Noise exceeds Threshold is a mirror facet (a sharp Glossy BSDF) turned from the
 surface normal by a random Tilt, at most as far as Facing Power allows: the facet glints only
 where a light reaches it and its mirror sends that light to the camera, so shadows, the sun's
-colour and its height apply by construction. Other grains show the Base shader, and so does a facet
-whose mirror would send the view below the surface: the grains around it hide what it mirrors
-(EEVEE would show the world under the horizon there, dark specks on far sand).
+colour and its height apply by construction. The facet's mirror comes on top of the Base shader
+(the grain still scatters light as sand does: a mirror in its place showed the darker sky as dark
+specks on sunlit sand). A facet whose mirror would send the view below the surface adds nothing:
+the grains around it hide what it mirrors (EEVEE would show the world under the horizon there).
 Twin: core.sand.glint_facets (mask and facet normal).
 """
 
@@ -13,13 +14,13 @@ from ..core import sand
 from . import helper as h
 
 NAME = "Sandscape Glint Facet"
-VERSION = 3
+VERSION = 4
 TREE_TYPE = "ShaderNodeTree"
-DESCRIPTION = ("A glinting grain as a mirror facet: Noise above Threshold shows a sharp glossy facet "
-               "tilted by Tilt within the spread Facing Power allows; other grains show Base")
+DESCRIPTION = ("A glinting grain's mirror facet: Noise above Threshold adds a sharp glossy facet, tilted "
+               "by Tilt within the spread Facing Power allows, on top of Base")
 
 INPUTS = {  # name -> (type, description, default, min, max, subtype); append only
-    "Base": ("NodeSocketShader", "The sand between the glinting grains", None, None, None, None),
+    "Base": ("NodeSocketShader", "The sand (the facets' mirrors come on top)", None, None, None, None),
     "Noise": ("NodeSocketFloat", "Per-grain random value in 0..1: above Threshold the grain is a facet",
               0.0, 0.0, 1.0, None),
     "Tilt": ("NodeSocketColor", "Per-grain random colour in 0..1: which way the facet leans",
@@ -39,7 +40,7 @@ INPUTS = {  # name -> (type, description, default, min, max, subtype); append on
                  "stands for many grains is mostly sand)", 1.0, 0.0, 1.0, "FACTOR"),
 }
 OUTPUTS = {
-    "Shader": ("NodeSocketShader", "Base, with glinting grains as mirror facets"),
+    "Shader": ("NodeSocketShader", "Base, with the mirror facets of glinting grains on top"),
     "Mask": ("NodeSocketFloat", "1 on grains that can glint, 0 elsewhere"),
     "Facet Normal": ("NodeSocketVector", "The facet's normal (the surface normal on other grains too)"),
     "Mirror": ("NodeSocketFloat", "Share of the surface the facet's mirror shows: Coverage on a grain "
@@ -83,10 +84,13 @@ def build(tree):
     above, above_nodes = _mirrors_above(tree, facet.outputs[0], normal)
     can = h.math(tree, "MULTIPLY", lit.outputs[0], above, label="Can Glint, Seen")
     covered = h.math(tree, "MULTIPLY", can.outputs[0], inputs["Coverage"], label="× Coverage")
-    mix = h.add_node(tree, "ShaderNodeMixShader", label="Base or Facet")
-    h.link(tree, covered.outputs[0], mix.inputs["Fac"])
-    h.link(tree, inputs["Base"], mix.inputs[1])
-    h.link(tree, mirror.outputs[0], mix.inputs[2])
+    # Coverage × the mirror (a Mix Shader with nothing as its first shader), on top of the base.
+    shown = h.add_node(tree, "ShaderNodeMixShader", label="Mirror × Coverage")
+    h.link(tree, covered.outputs[0], shown.inputs["Fac"])
+    h.link(tree, mirror.outputs[0], shown.inputs[2])
+    mix = h.add_node(tree, "ShaderNodeAddShader", label="Base + Mirror")
+    h.link(tree, inputs["Base"], mix.inputs[0])
+    h.link(tree, shown.outputs[0], mix.inputs[1])
 
     h.link(tree, mix.outputs[0], group_out.inputs["Shader"])
     h.link(tree, lit.outputs[0], group_out.inputs["Mask"])
@@ -97,7 +101,7 @@ def build(tree):
     h.frame(tree, "How Far a Facet Leans", (power, inverse, half_cos, cosine, squared, sine_sq, sine, spread))
     h.frame(tree, "Facet", (centred, up, upright, sideways, lean, tilted, facet, mirror))
     h.frame(tree, "Mirrors the View Above the Surface", above_nodes)
-    h.frame(tree, "Mirror on the Grain", (can, covered, mix))
+    h.frame(tree, "Mirror on the Grain", (can, covered, shown, mix))
     h.arrange(tree)
 
 

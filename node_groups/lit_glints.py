@@ -3,8 +3,8 @@ put into the pixel it projects into (Sandscape Glint Splat), so a sparkle covers
 every sample of that pixel agrees on it.
 
 The splat's four candidate cells each get a facet (Sandscape Glint Facet: its noise says whether
-it can glint, its colour which way it leans) over their share of the pixel; the sand keeps the
-rest. Without a render camera's pixel (Resolution 0, a panoramic camera) the cells sized to the
+it can glint, its colour which way it leans) over their share of the pixel, on top of the sand.
+Without a render camera's pixel (Resolution 0, a panoramic camera) the cells sized to the
 pixel's footprint (Sandscape Glint Cells) stand in, found by the samples that land in them; with
 Pixel Angle and Pixel Size 0 too, one cell per grain: Sandscape Glints' grains.
 Twins: core.glint_splat, core.glints.sparkle_noise and core.sand.glint_facets.
@@ -14,7 +14,7 @@ from . import glint_cells, glint_facet, glint_splat
 from . import helper as h
 
 NAME = "Sandscape Lit Glints"
-VERSION = 5
+VERSION = 6
 TREE_TYPE = "ShaderNodeTree"
 DESCRIPTION = ("Sparkling sand lit by the sun: cells of grains sized to the pixel's footprint, a seeded "
                "random value per cell, mirror facets above Threshold that glint only where light "
@@ -104,13 +104,9 @@ def _splat(tree, inputs):
         h.link(tree, facet.outputs["Shader"], both.inputs[1])
         made += [add, add_shown, both]
         total, shown, shader = add.outputs[0], add_shown.outputs[0], both.outputs[0]
-    # The sand keeps what the mirrors shown do not cover (an unlinked shader input adds nothing);
-    # the mask counts every grain that can glint.
-    sand = h.add_node(tree, "ShaderNodeMixShader", label="Sand Under the Mirrors")
-    h.link(tree, shown, sand.inputs["Fac"])
-    h.link(tree, inputs["Base"], sand.inputs[1])
+    # The facets' mirrors on top of the sand (the mask counts every grain that can glint).
     both = h.add_node(tree, "ShaderNodeAddShader", label="Sand + Facets")
-    h.link(tree, sand.outputs[0], both.inputs[0])
+    h.link(tree, inputs["Base"], both.inputs[0])
     h.link(tree, shader, both.inputs[1])
-    made += [sand, both]
+    made.append(both)
     return splat, (both.outputs[0], total, shown), made

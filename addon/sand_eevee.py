@@ -1,0 +1,136 @@
+"""The sand's own output for EEVEE: the same surface, balanced to Cycles' brightness.
+
+EEVEE renders Physical Sand's rough diffuse as Lambert and its sheen like a diffuse: under a low
+sun the sand came out a third as bright as in Cycles seen with the sun behind, under a high sun
+brighter. The material gets a second Material Output that only EEVEE uses, whose surface is the
+Cycles surface scaled by Sandscape EEVEE Balance where Cycles is dimmer, and a diffuse of the
+sand's colour added where it is brighter. The sun's direction reaches the group by simple-
+expression drivers on the scene's sun lamp (no Python needed on a farm). Cycles' output is
+untouched; the Journey look (its own diffuse) keeps one output for both.
+"""
+
+from ..node_groups import eevee_balance
+from ..node_groups import helper as h
+from . import drivers
+from . import ownership as own
+from .sun_lamp import scene_sun
+
+CYCLES_OUTPUT = "Sandscape Output"
+OUTPUT, BALANCE, SUN = "Sandscape EEVEE Output", "Sandscape EEVEE Balance", "Sandscape EEVEE Sun"
+SCALE, BOOST, BOOST_COLOR, BOTH = ("Sandscape EEVEE Scale", "Sandscape EEVEE Boost",
+                                   "Sandscape EEVEE Boost Color", "Sandscape EEVEE Surface")
+DOWN, UP = "Sandscape EEVEE Dimmer", "Sandscape EEVEE Brighter"
+DOWN_HELD, UP_HELD = "Sandscape EEVEE Dimmer ≥ 0", "Sandscape EEVEE Brighter ≥ 0"
+FRAME = "Sandscape EEVEE Frame"
+NODES = (OUTPUT, BALANCE, SUN, SCALE, BOOST, BOOST_COLOR, BOTH, DOWN, UP, DOWN_HELD, UP_HELD, FRAME)
+EXPRESSIONS = ("sa", "sb", "sc")  # the lamp's world +Z: towards the sun
+
+
+def attach(material, scene, look_node, balanced):
+    """Give our sand material its EEVEE output (balanced: the Physical look), or take it away (also
+    where the look is the artist's own group: the balance was measured on ours)."""
+    tree = material.node_tree
+    cycles = own.node(tree, CYCLES_OUTPUT)
+    if cycles is None:
+        return
+    if not balanced or look_node is None:
+        for name in NODES:
+            if own.node(tree, name) is not None:
+                tree.nodes.remove(own.node(tree, name))
+        cycles.target = "ALL"
+        return
+    _ensure_nodes(tree, look_node)
+    cycles.target = "CYCLES"
+    color = own.node(tree, BOOST_COLOR).inputs[0]
+    colour_links = look_node.inputs["Color"].links
+    if colour_links:
+        h.link(tree, colour_links[0].from_socket, color)
+    else:  # the look's own colour, as it is now (a re-run brings an edited one over)
+        color.default_value = tuple(look_node.inputs["Color"].default_value)[:3]
+    sync(tree)
+    follow_sun(material, scene)
+
+
+def sync(tree):
+    """The EEVEE output shows what the Cycles output shows: its surface (balanced) and its
+    displacement (painted prints, ripples), relinked after either changed."""
+    cycles, output = own.node(tree, CYCLES_OUTPUT), own.node(tree, OUTPUT)
+    if cycles is None or output is None:
+        return
+    for name, target in (("Surface", own.node(tree, SCALE).inputs[1]),
+                         ("Displacement", output.inputs["Displacement"])):
+        links = cycles.inputs[name].links
+        if links:
+            h.link(tree, links[0].from_socket, target)
+        else:
+            for link in target.links:
+                tree.links.remove(link)
+
+
+def follow_sun(material, scene):
+    """Drive the balance's sun from the scene's sun lamp (none: no balance)."""
+    sun_node = own.node(material.node_tree, SUN)
+    if sun_node is None:
+        return
+    sun = scene_sun(scene)
+    for index, expression in enumerate(EXPRESSIONS):
+        socket = sun_node.inputs[index]
+        if sun is None:
+            socket.driver_remove("default_value")
+            socket.default_value = 0.0
+        else:
+            variables = [(f"s{'abc'[row]}", "OBJECT", sun, f"matrix_world[2][{row}]") for row in range(3)]
+            drivers.drive(socket, "default_value", expression, variables)
+
+
+def follow_scene_sun(scene):
+    """Every balanced sand material in the scene follows the scene's sun (Add Atmosphere made or
+    found one). Returns how many."""
+    materials = {slot.material for obj in scene.objects for slot in getattr(obj, "material_slots", ())
+                 if slot.material is not None and slot.material.node_tree is not None}
+    followed = [m for m in materials if own.node(m.node_tree, SUN) is not None]
+    for material in followed:
+        follow_sun(material, scene)
+    return len(followed)
+
+
+def _ensure_nodes(tree, look_node):
+    output = own.node(tree, OUTPUT)
+    if output is not None:
+        return output
+    output = h.add_node(tree, "ShaderNodeOutputMaterial", name=OUTPUT, label="EEVEE Output", target="EEVEE")
+    sun = h.add_node(tree, "ShaderNodeCombineXYZ", name=SUN, label="Sun Direction (driven)")
+    balance = h.add_node(tree, "ShaderNodeGroup", name=BALANCE, label="EEVEE Balance",
+                         node_tree=h.ensure_group(eevee_balance))
+    h.link(tree, sun.outputs[0], balance.inputs["Sun Direction"])
+    normal = look_node.inputs["Normal"].links
+    if normal:
+        h.link(tree, normal[0].from_socket, balance.inputs["Normal"])
+    ratio = balance.outputs["Balance"]
+    # Where Cycles is dimmer: the surface times the balance (a Mix Shader with nothing).
+    down = h.math(tree, "SUBTRACT", 1.0, ratio, label="1 − Balance")
+    down.name = DOWN
+    scale = h.add_node(tree, "ShaderNodeMixShader", name=SCALE, label="× Balance (below 1)")
+    clamped = h.math(tree, "MAXIMUM", down.outputs[0], 0.0)
+    clamped.name = DOWN_HELD
+    h.link(tree, clamped.outputs[0], scale.inputs["Fac"])
+    # Where it is brighter: a diffuse of the sand's colour times (balance − 1).
+    up = h.math(tree, "SUBTRACT", ratio, 1.0, label="Balance − 1")
+    up.name = UP
+    extra = h.math(tree, "MAXIMUM", up.outputs[0], 0.0)
+    extra.name = UP_HELD
+    color = h.add_node(tree, "ShaderNodeVectorMath", name=BOOST_COLOR, label="Sand Colour × (Balance − 1)",
+                       operation="SCALE")
+    h.link(tree, extra.outputs[0], color.inputs["Scale"])
+    boost = h.add_node(tree, "ShaderNodeBsdfDiffuse", name=BOOST, label="Brighter, as Cycles")
+    h.link(tree, color.outputs[0], boost.inputs["Color"])
+    if normal:
+        h.link(tree, normal[0].from_socket, boost.inputs["Normal"])
+    both = h.add_node(tree, "ShaderNodeAddShader", name=BOTH)
+    h.link(tree, scale.outputs[0], both.inputs[0])
+    h.link(tree, boost.outputs[0], both.inputs[1])
+    h.link(tree, both.outputs[0], output.inputs["Surface"])
+    frame = h.frame(tree, "EEVEE: Balanced to Cycles", (sun, balance, down, clamped, scale, up, extra, color,
+                                                         boost, both, output))
+    frame.name = FRAME
+    return output

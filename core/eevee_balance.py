@@ -1,0 +1,75 @@
+"""The factor that brings our Physical Sand in EEVEE to Cycles' brightness, as a function of the
+view, the sun and the surface: the twin of "Sandscape EEVEE Balance".
+
+EEVEE has neither Cycles' rough (Oren-Nayar) diffuse nor its microfiber sheen: its diffuse is
+Lambert and its sheen is lit like a diffuse. Under a low sun Cycles' sand is up to 3.7x brighter
+seen with the sun behind (back-scatter at grazing angles), and under a high sun EEVEE's is
+brighter. With C = Cycles' brightness over EEVEE's, the balance G is C where C < 1 (the EEVEE
+output scales its surface by it) and 1 + (C − 1) E / D above (it adds G − 1 of a Lambert diffuse
+of the sand's colour, whose own brightness D is below the sand's E). C, E and D were measured on
+a flat plane of the sand under our sun and sky (devtools/eevee_balance_data.py) and G fitted
+here as exp(polynomial) in
+
+    v = N·V, l = N·L (each at least MIN_COSINE) and a = cos of the azimuth between V and L
+    about N (a = 1: the sun in front of the camera; -1: behind it).
+
+The fit is a calibration, not physics; its reference is Cycles itself (bench/eevee.py measures
+an EEVEE frame against a Cycles one).
+"""
+
+import itertools
+
+import numpy as np
+
+MIN_COSINE = 0.05
+BALANCE_RANGE = (0.5, 5.0)  # the fitted balance is held inside what the measurements spanned
+DEGREE = 3
+# exp(sum c v^i l^j a^k) over the terms (i, j, k), total degree at most DEGREE.
+TERMS = tuple(t for t in itertools.product(range(DEGREE + 1), repeat=3) if sum(t) <= DEGREE)
+# Fitted to devtools/eevee_balance.json (devtools/eevee_balance_data.py, Blender 5.2.3).
+COEFFICIENTS = (1.2623, -0.0321, 0.5475, -0.0321, -2.6761, -0.9516, -0.4284, -0.47, 0.9799, 1.2038,
+                -3.0935, -0.443, -0.3151, 6.8319, -0.0704, -2.1788, 0.7799, 0.6211, -2.0744, 0.3805)
+
+
+def _unit(vector):
+    vector = np.asarray(vector, np.float64)
+    length = np.linalg.norm(vector, axis=-1, keepdims=True)
+    return vector / np.where(length > 0, length, 1.0)
+
+
+def angles(view, light, normal):
+    """(v, l, a) as the node group computes them; view and light point away from the surface."""
+    view, light, normal = _unit(view), _unit(light), _unit(normal)
+    v = np.sum(view * normal, axis=-1)
+    l_ = np.sum(light * normal, axis=-1)
+    across_v = view - v[..., None] * normal
+    across_l = light - l_[..., None] * normal
+    lengths = np.linalg.norm(across_v, axis=-1) * np.linalg.norm(across_l, axis=-1)
+    # a = 1 with the sun in front of the camera: the view's across part points away from the sun's.
+    a = -np.sum(across_v * across_l, axis=-1) / np.maximum(lengths, 1e-6)
+    return np.maximum(v, MIN_COSINE), np.maximum(l_, MIN_COSINE), np.clip(a, -1.0, 1.0)
+
+
+def design(v, l_, a):
+    """The fit's terms for these angles: (..., len(TERMS))."""
+    return np.stack([v ** i * l_ ** j * a ** k for i, j, k in TERMS], axis=-1)
+
+
+def target(cycles, eevee, diffuse):
+    """The balance that makes EEVEE's brightness `eevee` into Cycles' `cycles`, given what a unit
+    of the Lambert diffuse adds (`diffuse`)."""
+    ratio = np.asarray(cycles, np.float64) / np.asarray(eevee, np.float64)
+    return np.where(ratio < 1.0, ratio, 1.0 + (ratio - 1.0) * np.asarray(eevee) / np.asarray(diffuse))
+
+
+def balance(view, light, normal, coefficients=COEFFICIENTS):
+    """The balance for the sand seen from `view` under a sun at `light`."""
+    terms = design(*angles(view, light, normal))
+    return np.clip(np.exp(terms @ np.asarray(coefficients, np.float64)), *BALANCE_RANGE)
+
+
+def fit(v, l_, a, ratio):
+    """Least-squares coefficients of log(balance) over the measured angles."""
+    matrix = design(np.maximum(v, MIN_COSINE), np.maximum(l_, MIN_COSINE), a)
+    coefficients, *_ = np.linalg.lstsq(matrix, np.log(ratio), rcond=None)
+    return tuple(float(c) for c in coefficients)

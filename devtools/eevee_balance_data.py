@@ -1,0 +1,125 @@
+"""Measure Cycles' brightness of our sand over EEVEE's and fit core.eevee_balance's coefficients.
+
+A flat plane of the default sand (Physical Sand, lit glints, no ripples; one output for both
+engines, no balance) under Add Atmosphere's sun and sky (no haze, no dust), seen through a long
+lens from 1.6 m at each view elevation and azimuth from the sun, rendered in Cycles (64 spp) and
+EEVEE (16 samples), and a Lambert plane of the sand's colour in EEVEE; linear means. Prints the
+fitted coefficients (paste them into core/eevee_balance.py) and the fit's error.
+
+Run: .venv/bin/python devtools/eevee_balance_data.py [--json OUT] [--from-json IN]
+(devtools/eevee_balance.json holds the measurements the coefficients were fitted to.)
+"""
+
+import argparse
+import json
+import math
+import pathlib
+import sys
+
+import numpy as np
+
+REPO = pathlib.Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(REPO))
+
+from core import atmosphere as air  # noqa: E402
+from core import eevee_balance as twin  # noqa: E402
+
+SUN_ELEVATIONS = (10, 20, 35, 55, 80)
+VIEW_ELEVATIONS = (3, 8, 15, 30, 50, 80)
+AZIMUTHS = (0, 90, 180)  # the camera's heading from the sun's: 0 looks towards the sun
+PLAIN_OFFSET = 5000.0
+
+
+def measure():
+    from devtools import session
+
+    root = session.isolate()
+    import bpy
+
+    from devtools import readback, scenes
+
+    sandscape = session.install_dev_extension(root)
+    session.reset()
+    bpy.ops.mesh.primitive_plane_add(size=2000)
+    ground = bpy.context.active_object
+    scene = bpy.context.scene
+    settings = scene.sandscape_atmosphere
+    settings.density = settings.dust_density = 0.0
+    settings.use_haze = settings.set_exposure = False
+    settings.sun_azimuth = 0.0
+    camera = scenes.camera("PERSP", location=(0, 0, 1.6), lens=300)
+    camera.data.clip_end = 1e4
+    bpy.context.view_layer.objects.active = ground
+    assert bpy.ops.sandscape.add_sand_material(ripples=False) == {"FINISHED"}
+    material = ground.active_material  # measured without its EEVEE output: what the balance corrects
+    sandscape.addon.sand_eevee.attach(material, scene, sandscape.addon.sand.look_node(material), False)
+    readback.cycles_scene(scene, (24, 12), 64)
+    scene.eevee.taa_render_samples = 16
+    # EEVEE's Lambert diffuse of the sand's colour alone (what the EEVEE output's boost adds per
+    # unit), on a second plane far off: switching materials would recompile EEVEE's shaders.
+    plain = bpy.data.materials.new("Plain Diffuse")
+    plain.node_tree.nodes.clear()
+    bsdf = plain.node_tree.nodes.new("ShaderNodeBsdfDiffuse")
+    bsdf.inputs["Color"].default_value = sandscape_look_colour(ground.active_material)
+    out = plain.node_tree.nodes.new("ShaderNodeOutputMaterial")
+    plain.node_tree.links.new(bsdf.outputs[0], out.inputs["Surface"])
+    bpy.ops.mesh.primitive_plane_add(size=2000, location=(PLAIN_OFFSET, 0.0, 0.0))
+    bpy.context.active_object.data.materials.append(plain)
+    rows = []
+    for sun in SUN_ELEVATIONS:
+        settings.sun_elevation = math.radians(sun)
+        assert bpy.ops.sandscape.add_atmosphere() == {"FINISHED"}
+        for view in VIEW_ELEVATIONS:
+            for azimuth in AZIMUTHS:
+                camera.rotation_euler = (math.radians(90 - view), 0.0, math.radians(azimuth))
+                means = []
+                for engine, x in (("CYCLES", 0.0), ("BLENDER_EEVEE", 0.0), ("BLENDER_EEVEE", PLAIN_OFFSET)):
+                    scene.render.engine = engine
+                    camera.location.x = x
+                    means.append(readback.render(scene)[..., :3].reshape(-1, 3).mean(0).tolist())
+                camera.location.x = 0.0
+                rows.append({"sun": sun, "view": view, "az": azimuth, "cycles": means[0], "eevee": means[1],
+                             "eevee_diffuse": means[2]})
+                print(f"balance data: {rows[-1]}", flush=True)
+    return rows
+
+
+def sandscape_look_colour(material):
+    look = material.node_tree.nodes["Sandscape Look"]
+    return tuple(look.inputs["Color"].default_value)
+
+
+def directions(row):
+    """(towards the camera, towards the sun) of a row, as the scene had them."""
+    tilt, heading = math.radians(90 - row["view"]), math.radians(row["az"])
+    view = (math.sin(tilt) * math.sin(heading), -math.sin(tilt) * math.cos(heading), math.cos(tilt))
+    return np.array(view), air.sun_direction(math.radians(row["sun"]), 0.0)
+
+
+def measured_balance(rows):
+    """(towards the camera, towards the sun, the balance that was needed) of the rows, as arrays."""
+    view, light = (np.array(side) for side in zip(*[directions(row) for row in rows], strict=True))
+    means = (np.array([np.mean(row[k]) for row in rows]) for k in ("cycles", "eevee", "eevee_diffuse"))
+    return view, light, twin.target(*means)
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--json", help="write the measurements here")
+    parser.add_argument("--from-json", help="fit these measurements instead of rendering")
+    args = parser.parse_args(argv)
+    rows = json.loads(pathlib.Path(args.from_json).read_text()) if args.from_json else measure()
+    if args.json:
+        pathlib.Path(args.json).write_text(json.dumps(rows, indent=1))
+    view, light, ratio = measured_balance(rows)
+    v, l_, a = twin.angles(view, light, (0.0, 0.0, 1.0))
+    coefficients = twin.fit(v, l_, a, ratio)
+    fitted = twin.balance(view, light, (0.0, 0.0, 1.0), coefficients)
+    error = fitted / ratio - 1.0
+    print(f"balance fit: COEFFICIENTS = {tuple(round(c, 4) for c in coefficients)}")
+    print(f"balance fit: balance {ratio.min():.2f}..{ratio.max():.2f}; fitted against measured: "
+          f"mean |error| {np.abs(error).mean():.1%}, largest {np.abs(error).max():.1%}")
+
+
+if __name__ == "__main__":
+    main()

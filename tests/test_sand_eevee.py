@@ -1,0 +1,63 @@
+"""The sand's EEVEE output: Cycles keeps its own, EEVEE gets the same surface balanced by the
+driven sun; re-runs, looks, painted prints and a moved sun keep the two in step."""
+
+import math
+
+import bpy
+import numpy as np
+import pytest
+
+from devtools import readback, scenes
+
+
+def outputs(material):
+    return {node.name: node.target for node in material.node_tree.nodes
+            if node.bl_idname == "ShaderNodeOutputMaterial"}
+
+
+def source(socket):
+    return socket.links[0].from_socket if socket.links else None
+
+
+def test_physical_sand_gets_an_eevee_output_once_and_journey_none(sandscape):
+    plane = readback.uv_plane()
+    for _ in range(2):
+        assert bpy.ops.sandscape.add_sand_material() == {"FINISHED"}
+    material = plane.active_material
+    assert outputs(material) == {"Sandscape Output": "CYCLES", "Sandscape EEVEE Output": "EEVEE"}
+    names = [node.name for node in material.node_tree.nodes]
+    assert len(names) == len(set(names))
+    assert bpy.ops.sandscape.add_sand_material(look="JOURNEY") == {"FINISHED"}
+    assert outputs(material) == {"Sandscape Output": "ALL"}
+    assert not any(name.startswith("Sandscape EEVEE") for name in material.node_tree.nodes.keys())
+    assert bpy.ops.sandscape.add_sand_material(look="PHYSICAL") == {"FINISHED"}
+    assert outputs(material) == {"Sandscape Output": "CYCLES", "Sandscape EEVEE Output": "EEVEE"}
+
+
+def test_the_balance_follows_the_sun_and_the_prints_reach_eevee(sandscape):
+    terrain = scenes.height_field(8.0, 8, name="Their Sand")
+    walker = scenes.keyframed_walker(lambda f: (-1.5 + 3.0 * (f - 1) / 30, 0.0, 0.0), range(1, 32))
+    scenes.footprint_settings(terrain, walker, (1, 31), resolution=128)
+    bpy.context.view_layer.objects.active = terrain
+    assert bpy.ops.sandscape.add_sand_material() == {"FINISHED"}
+    material = terrain.active_material
+    tree = material.node_tree
+    sun_node = tree.nodes["Sandscape EEVEE Sun"]
+    assert tuple(sun_node.inputs[i].default_value for i in range(3)) == (0.0, 0.0, 0.0)  # no sun yet
+    scene = bpy.context.scene
+    scene.sandscape_atmosphere.sun_elevation = math.radians(20.0)
+    assert bpy.ops.sandscape.add_atmosphere() == {"FINISHED"}
+    sun = sandscape.addon.atmosphere.scene_sun(scene)
+    for elevation in (20.0, 65.0):
+        if elevation != 20.0:  # the artist turns our sun by hand
+            sun.rotation_euler = (math.radians(90.0 - elevation), 0.0, 0.4)
+        scene.frame_set(scene.frame_current)
+        driven = np.array([sun_node.inputs[i].default_value for i in range(3)])
+        axis = np.array(sun.matrix_world.col[2][:3])
+        assert np.allclose(driven, axis, atol=1e-5)
+        assert math.degrees(math.asin(axis[2] / np.linalg.norm(axis))) == pytest.approx(elevation, abs=0.01)
+    assert bpy.ops.sandscape.paint_footprints() == {"FINISHED"}
+    cycles, eevee = tree.nodes["Sandscape Output"], tree.nodes["Sandscape EEVEE Output"]
+    assert source(cycles.inputs["Displacement"]) is not None
+    assert source(eevee.inputs["Displacement"]) == source(cycles.inputs["Displacement"])
+    assert source(tree.nodes["Sandscape EEVEE Scale"].inputs[1]) == source(cycles.inputs["Surface"])
