@@ -134,7 +134,7 @@ def _with_blurred(tree, layers, image, volume, settings):
 
 def _glint_light(tree, layers):
     """The light the glinting grains send: glossy light where a grain was hit, and the emission
-    in Emission mode. A grain's mirror is a Glossy closure that replaces the sand under it."""
+    in Emission mode. A grain's mirror is a Glossy closure on top of the sand."""
     glossy = h.vector_math(tree, "ADD", layers.outputs["Glossy Direct"], layers.outputs["Glossy Indirect"],
                            label="Glossy Light")
     # Cycles' light passes are divided by the closure colour: × Glossy Color gives the light seen.
@@ -204,10 +204,11 @@ def _denoised(tree, layers, settings, image_denoised=False):
     """The image denoised with albedo and normal, the gated blur's change to its scattered light,
     and the sparkling pixels taken raw.
 
-    Raw pixels, not denoised (image − glint light) + glint light: a glinting grain replaces the
-    sand it covers, so the rest of its pixel was a dark hole that the denoiser filled with the
-    sand around it, and the glint added back on top came out 30 % too bright (σ 0.0100 against
-    0.0086 in the demo at 16 samples).
+    Raw pixels, not denoised (image − glint light) + glint light: while a glinting grain replaced
+    the sand it covered (Glint Facet before v4), the rest of its pixel was a dark hole that the
+    denoiser filled with the sand around it, and the glint added back on top came out 30 % too
+    bright (σ 0.0100 against 0.0086 in the demo at 16 samples). Not measured again since the
+    mirror came on top of the sand.
     """
     image = layers.outputs["Image"]
     denoised = None
