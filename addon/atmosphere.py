@@ -113,8 +113,7 @@ def _follow(sky, sun):
     elevation = "asin(min(max(z / max(sqrt(x * x + y * y + z * z), 1e-12), -1), 1))"
     for name, expression, axes in (("sun_elevation", elevation, "xyz"),
                                    ("sun_rotation", "atan2(x, y) + (2 * pi if x < 0 else 0)", "xy")):
-        drivers.drive(sky, name, expression,
-                      [(axis, "OBJECT", sun, f"matrix_world[2][{'xyz'.index(axis)}]") for axis in axes])
+        drivers.drive(sky, name, expression, drivers.lamp_axis(sun, axes))
 
 
 def followed_sun(sky):

@@ -28,6 +28,12 @@ def drive(owner, path, expression, variables, index=-1):
     return driver
 
 
+def lamp_axis(lamp, names=("sa", "sb", "sc")):
+    """Variables reading a lamp's world +Z (matrix_world's third column, towards the sun for a sun
+    lamp): names[i] reads component i."""
+    return [(name, "OBJECT", lamp, f"matrix_world[2][{row}]") for row, name in enumerate(names)]
+
+
 def rearm(animation_data, expressions, ready):
     """Re-enable the invalid drivers of animation_data whose expression is one of ours and whose
     first target `ready(id)` says can be read now. Returns how many."""

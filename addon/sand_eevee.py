@@ -79,8 +79,7 @@ def follow_sun(material, scene):
             socket.driver_remove("default_value")
             socket.default_value = 0.0
         else:
-            variables = [(f"s{'abc'[row]}", "OBJECT", sun, f"matrix_world[2][{row}]") for row in range(3)]
-            drivers.drive(socket, "default_value", expression, variables)
+            drivers.drive(socket, "default_value", expression, drivers.lamp_axis(sun))
 
 
 def follow_scene_sun(scene):

@@ -92,7 +92,7 @@ def attach(tree, scene, sun):
         sockets[(PLACE, "Perspective")].default_value = 0.0
         return 0
     # The sun first: rearm() and driven_sun() read the first target.
-    variables = [(f"s{'abc'[row]}", "OBJECT", sun, f"matrix_world[2][{row}]") for row in range(3)]
+    variables = drivers.lamp_axis(sun)
     variables += [(name, "SCENE", scene, path) for name, path in CAMERA_PATHS.items()]
     for key, socket in sockets.items():
         drivers.drive(socket, "default_value", EXPRESSIONS[key], variables)
