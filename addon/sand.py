@@ -203,7 +203,7 @@ def update_material(material, values, image=None, look="PHYSICAL", glint_mode="L
                 wave.inputs[name].default_value = ripple_values[name]
         _ripple_displacement(material, bool(ripple_values.get("Displacement")))
     sand_eevee.attach(material, scene if scene is not None else bpy.context.scene, look_node(material),
-                      look == "PHYSICAL")
+                      look, node)
     return node
 
 

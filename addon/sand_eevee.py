@@ -6,7 +6,8 @@ brighter. The material gets a second Material Output that only EEVEE uses, whose
 Cycles surface scaled by Sandscape EEVEE Balance where Cycles is dimmer, and a diffuse of the
 sand's colour added where it is brighter. The sun's direction reaches the group by simple-
 expression drivers on the scene's sun lamp (no Python needed on a farm). Cycles' output is
-untouched; the Journey look (its own diffuse) keeps one output for both.
+untouched. The Journey look's EEVEE output is its own EEVEE Shader (its contrast through one
+diffuse, the driven sun undoing Lambert's cosine) with the glints on top.
 """
 
 from ..node_groups import eevee_balance
@@ -22,33 +23,47 @@ SCALE, BOOST, BOOST_COLOR, BOTH = ("Sandscape EEVEE Scale", "Sandscape EEVEE Boo
 DOWN, UP = "Sandscape EEVEE Dimmer", "Sandscape EEVEE Brighter"
 DOWN_HELD, UP_HELD = "Sandscape EEVEE Dimmer ≥ 0", "Sandscape EEVEE Brighter ≥ 0"
 FRAME = "Sandscape EEVEE Frame"
-NODES = (OUTPUT, BALANCE, SUN, SCALE, BOOST, BOOST_COLOR, BOTH, DOWN, UP, DOWN_HELD, UP_HELD, FRAME)
+JOURNEY_SURFACE = "Sandscape EEVEE Journey Surface"
+NODES = (OUTPUT, BALANCE, SUN, SCALE, BOOST, BOOST_COLOR, BOTH, DOWN, UP, DOWN_HELD, UP_HELD, FRAME,
+         JOURNEY_SURFACE)
 EXPRESSIONS = ("sa", "sb", "sc")  # the lamp's world +Z: towards the sun
 
 
-def attach(material, scene, look_node, balanced):
-    """Give our sand material its EEVEE output (balanced: the Physical look), or take it away (also
-    where the look is the artist's own group: the balance was measured on ours)."""
+def attach(material, scene, look_node, look, glint=None):
+    """Give our sand material its EEVEE output, or take it away. PHYSICAL: the Cycles surface
+    balanced; JOURNEY: the look's EEVEE Shader with the glints' facets (or emission) on top; none
+    where the look is the artist's own group (the balance was measured on ours)."""
     tree = material.node_tree
     cycles = own.node(tree, CYCLES_OUTPUT)
     if cycles is None:
         return
-    if not balanced or look_node is None:
-        for name in NODES:
-            if own.node(tree, name) is not None:
-                tree.nodes.remove(own.node(tree, name))
+    journey = look == "JOURNEY" and look_node is not None and glint is not None and \
+        "EEVEE Shader" in look_node.outputs and "Sun Direction" in look_node.inputs
+    if not (journey or (look == "PHYSICAL" and look_node is not None)):
+        _remove(tree)
         cycles.target = "ALL"
         return
-    _ensure_nodes(tree, look_node)
+    if own.node(tree, OUTPUT) is not None and (own.node(tree, JOURNEY_SURFACE) is None) == journey:
+        _remove(tree)  # built for the other look
+    if journey:
+        _ensure_journey_nodes(tree, look_node, glint)
+    else:
+        _ensure_nodes(tree, look_node)
+        color = own.node(tree, BOOST_COLOR).inputs[0]
+        colour_links = look_node.inputs["Color"].links
+        if colour_links:
+            h.link(tree, colour_links[0].from_socket, color)
+        else:  # the look's own colour, as it is now (a re-run brings an edited one over)
+            color.default_value = tuple(look_node.inputs["Color"].default_value)[:3]
     cycles.target = "CYCLES"
-    color = own.node(tree, BOOST_COLOR).inputs[0]
-    colour_links = look_node.inputs["Color"].links
-    if colour_links:
-        h.link(tree, colour_links[0].from_socket, color)
-    else:  # the look's own colour, as it is now (a re-run brings an edited one over)
-        color.default_value = tuple(look_node.inputs["Color"].default_value)[:3]
     sync(tree)
     follow_sun(material, scene)
+
+
+def _remove(tree):
+    for name in NODES:
+        if own.node(tree, name) is not None:
+            tree.nodes.remove(own.node(tree, name))
 
 
 def sync(tree):
@@ -57,8 +72,9 @@ def sync(tree):
     cycles, output = own.node(tree, CYCLES_OUTPUT), own.node(tree, OUTPUT)
     if cycles is None or output is None:
         return
-    for name, target in (("Surface", own.node(tree, SCALE).inputs[1]),
-                         ("Displacement", output.inputs["Displacement"])):
+    scale = own.node(tree, SCALE)  # none for Journey: its EEVEE surface is its own
+    for name, target in ((("Surface", scale.inputs[1]),) if scale is not None else ()) + \
+            (("Displacement", output.inputs["Displacement"]),):
         links = cycles.inputs[name].links
         if links:
             h.link(tree, links[0].from_socket, target)
@@ -91,6 +107,27 @@ def follow_scene_sun(scene):
     for material in followed:
         follow_sun(material, scene)
     return len(followed)
+
+
+def _ensure_journey_nodes(tree, look_node, glint):
+    """Journey's EEVEE output: the look's EEVEE Shader (its contrast through one diffuse, lit by
+    the driven sun) with the glints' facets, or their emission, added."""
+    output = own.node(tree, OUTPUT)
+    if output is None:
+        output = h.add_node(tree, "ShaderNodeOutputMaterial", name=OUTPUT, label="EEVEE Output",
+                            target="EEVEE")
+        sun = h.add_node(tree, "ShaderNodeCombineXYZ", name=SUN, label="Sun Direction (driven)")
+        both = h.add_node(tree, "ShaderNodeAddShader", name=JOURNEY_SURFACE, label="Sand + Glints (EEVEE)")
+        frame = h.frame(tree, "EEVEE: Journey's Contrast as a Diffuse", (sun, both, output))
+        frame.name = FRAME
+    both = own.node(tree, JOURNEY_SURFACE)
+    h.link(tree, own.node(tree, SUN).outputs[0], look_node.inputs["Sun Direction"])
+    h.link(tree, look_node.outputs["EEVEE Shader"], both.inputs[0])
+    on_top = glint.outputs["Facets"] if "Facets" in glint.outputs else glint.outputs.get("Emission")
+    if on_top is not None:
+        h.link(tree, on_top, both.inputs[1])
+    h.link(tree, both.outputs[0], output.inputs["Surface"])
+    return output
 
 
 def _ensure_nodes(tree, look_node):

@@ -10,6 +10,8 @@ journey_contrast        the seed's own diffuse contrast, saturate(4 N'.L), N' th
                         its vertical part scaled by 0.3 (not renormalised): the reference
 journey_diffuse     <-> the Diffuse Contrast part of "Sandscape Journey Sand": that contrast as
                         the two Toon BSDFs Cycles renders (a ramp in two straight pieces)
+journey_eevee       <-> the EEVEE Shader's diffuse: the seed's contrast through one Diffuse BSDF
+                        whose colour factor (journey_eevee_factor) undoes Lambert's cosine
 ocean_roughness     <-> the Ocean Specular part: a Blinn-Phong exponent as Beckmann roughness
 rim                 <-> the Rim part: (1 - N.V)^power x strength
 ripples             <-> "Sandscape Ripples": wind ripples' height and shading normal
@@ -123,6 +125,27 @@ def journey_diffuse(normal, light, size=TOON_SIZE, squash=SQUASH):
     first = toon_intensity(angle, full / (np.pi / 2), (knee - full) / (np.pi / 2))
     second = toon_intensity(angle, knee / (np.pi / 2), 1.0 - knee / (np.pi / 2))
     return ((top - middle) * first + middle * second) / (2 * np.pi)
+
+
+def journey_eevee_factor(normal, light, size=TOON_SIZE, squash=SQUASH):
+    """The colour factor of the EEVEE Shader's one Diffuse BSDF on the unit squashed normal:
+    min(1/c, k) / 2, c = that normal . the unit light (no light: c = 0, the factor k / 2)."""
+    unit, _, _, _, _ = contrast_toons(normal, size, squash)
+    squashed = _unit(normal) * np.array([1.0, 1.0, squash])
+    k = np.linalg.norm(squashed, axis=-1) / max(np.cos(size * np.pi / 2), 1e-4)
+    light = np.asarray(light, np.float64)
+    length = np.linalg.norm(light)
+    cosine = np.sum(unit * (light / length if length > 0 else light), axis=-1)
+    return 0.5 * np.minimum(1.0 / np.maximum(cosine, 1e-4), k)
+
+
+def journey_eevee(normal, light, size=TOON_SIZE, squash=SQUASH):
+    """Radiance per unit of sun irradiance and albedo of the EEVEE Shader's diffuse: Lambert's
+    max(c, 0) / pi times the factor, which is journey_contrast / 2 pi (the Cycles output's scale)."""
+    unit, _, _, _, _ = contrast_toons(normal, size, squash)
+    light = np.asarray(light, np.float64)
+    cosine = np.sum(unit * light / np.linalg.norm(light), axis=-1)
+    return np.maximum(cosine, 0.0) / np.pi * journey_eevee_factor(normal, light, size, squash)
 
 
 def ocean_roughness(exponent):

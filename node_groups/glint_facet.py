@@ -14,7 +14,7 @@ from ..core import sand
 from . import helper as h
 
 NAME = "Sandscape Glint Facet"
-VERSION = 4
+VERSION = 5
 TREE_TYPE = "ShaderNodeTree"
 DESCRIPTION = ("A glinting grain's mirror facet: Noise above Threshold adds a sharp glossy facet, tilted "
                "by Tilt within the spread Facing Power allows, on top of Base")
@@ -45,6 +45,8 @@ OUTPUTS = {
     "Facet Normal": ("NodeSocketVector", "The facet's normal (the surface normal on other grains too)"),
     "Mirror": ("NodeSocketFloat", "Share of the surface the facet's mirror shows: Coverage on a grain "
                "that can glint and mirrors the view above the surface, else 0"),
+    "Facets": ("NodeSocketShader", "The mirror facets alone, without Base (an EEVEE output adds them to "
+               "its own sand)"),
 }
 
 
@@ -96,6 +98,7 @@ def build(tree):
     h.link(tree, lit.outputs[0], group_out.inputs["Mask"])
     h.link(tree, facet.outputs[0], group_out.inputs["Facet Normal"])
     h.link(tree, covered.outputs[0], group_out.inputs["Mirror"])
+    h.link(tree, shown.outputs[0], group_out.inputs["Facets"])
     h.frame(tree, "Surface Normal", normal_nodes)
     h.frame(tree, "Which Grains", (lit,))
     h.frame(tree, "How Far a Facet Leans", (power, inverse, half_cos, cosine, squared, sine_sq, sine, spread))

@@ -14,11 +14,16 @@ as Cycles closures, each term a framed part to see and tune:
 - Ocean Specular: a Blinn-Phong lobe of exponent p, as Beckmann roughness (2 / (p + 2))^1/4
   (the two lobes' widths agree within 7 % at p = 16 and 2 % above 64).
 - Glitter: the lit glints (Sandscape Lit Glints), added by the material on top.
+- EEVEE Shader: EEVEE lights a Toon BSDF as a diffuse, so the contrast there is one Diffuse BSDF
+  on the unit squashed normal whose colour carries min(1/c, k) / 2, c = N'.L on that normal:
+  Lambert's c / pi times it is the seed's saturate(4 N'.L) / 2 pi exactly, the Cycles output's
+  scale. It needs the sun's direction (Sun Direction, driven by the material); with none the
+  factor is k / 2, the contrast of a light straight along the squashed normal.
 
 The talk adds the diffuse term to saturate(max(rim, ocean)). Closures cannot take a maximum of
 each other's light, so they are added: the rim lives at grazing angles and the ocean specular
 around the mirror direction, and where both are small their sum stays near the maximum.
-Twins: core.sand.journey_diffuse, ocean_roughness, rim, sand_normal.
+Twins: core.sand.journey_diffuse, journey_eevee_factor, ocean_roughness, rim, sand_normal.
 """
 
 from ..core import sand
@@ -26,7 +31,7 @@ from . import helper as h
 from . import sand_normal
 
 NAME = "Sandscape Journey Sand"
-VERSION = 2
+VERSION = 3
 TREE_TYPE = "ShaderNodeTree"
 DESCRIPTION = ("Journey's sand (seed 004): diffuse contrast, sand normal, rim, ocean specular as Cycles "
                "closures; add the lit glints for the glitter")
@@ -57,7 +62,11 @@ def build(tree):
                 "narrower)", 64.0, 0.0, None)
     h.add_input(tree, "Ocean Strength", "NodeSocketFloat", "Ocean specular: scale of the highlight", 0.4,
                 0.0, None)
+    h.add_input(tree, "Sun Direction", "NodeSocketVector", "EEVEE Shader only: towards the sun (the "
+                "material drives it from the scene's sun lamp; zero: no sun)", (0.0, 0.0, 0.0))
     h.add_output(tree, "Shader", "NodeSocketShader", "Diffuse contrast + rim + ocean specular")
+    h.add_output(tree, "EEVEE Shader", "NodeSocketShader", "The same for EEVEE, which lights Toon BSDFs "
+                 "as diffuse: the contrast through one Diffuse BSDF")
     h.add_output(tree, "Normal", "NodeSocketVector", "The sand normal every term uses")
     h.add_output(tree, "Rim Weight", "NodeSocketFloat", "(1 - N.V)^power x strength, for inspection")
     h.add_output(tree, "Ocean Roughness", "NodeSocketFloat", "The Beckmann roughness of the ocean lobe")
@@ -67,7 +76,8 @@ def build(tree):
     grains = sand_normal.grain_node(tree, inputs)
     normal = grains.outputs["Normal"]
 
-    contrast_nodes, contrast = _diffuse_contrast(tree, inputs, normal)
+    contrast_nodes, contrast, squashed = _diffuse_contrast(tree, inputs, normal)
+    eevee_nodes, eevee_contrast = _eevee_contrast(tree, inputs, squashed)
 
     facing = h.add_node(tree, "ShaderNodeLayerWeight", inputs={"Blend": 0.5})
     h.link(tree, normal, facing.inputs["Normal"])
@@ -97,6 +107,13 @@ def build(tree):
     h.link(tree, lit.outputs[0], total.inputs[0])
     h.link(tree, ocean.outputs[0], total.inputs[1])
     h.link(tree, total.outputs[0], group_out.inputs["Shader"])
+    eevee_lit = h.add_node(tree, "ShaderNodeAddShader", label="EEVEE: Diffuse + Rim")
+    h.link(tree, eevee_contrast, eevee_lit.inputs[0])
+    h.link(tree, rim.outputs[0], eevee_lit.inputs[1])
+    eevee_total = h.add_node(tree, "ShaderNodeAddShader", label="EEVEE: + Ocean Specular")
+    h.link(tree, eevee_lit.outputs[0], eevee_total.inputs[0])
+    h.link(tree, ocean.outputs[0], eevee_total.inputs[1])
+    h.link(tree, eevee_total.outputs[0], group_out.inputs["EEVEE Shader"])
     h.link(tree, normal, group_out.inputs["Normal"])
     h.link(tree, weight.outputs[0], group_out.inputs["Rim Weight"])
     h.link(tree, roughness.outputs[0], group_out.inputs["Ocean Roughness"])
@@ -105,12 +122,15 @@ def build(tree):
     h.frame(tree, "Rim", (facing, power, falloff, weight, tint, rim))
     h.frame(tree, "Ocean Specular", (plus_two, ratio, roughness, shine, ocean))
     h.frame(tree, "Combined (added: closures take no maximum)", (lit, total))
+    h.frame(tree, "Diffuse Contrast for EEVEE", eevee_nodes)
+    h.frame(tree, "EEVEE Combined", (eevee_lit, eevee_total))
     h.arrange(tree)
 
 
 def _diffuse_contrast(tree, inputs, normal):
     """Two Toon BSDFs lighting min(1, k cos angle) on the unit squashed normal (twin:
-    core.sand.contrast_toons, journey_diffuse). Returns (nodes, shader socket)."""
+    core.sand.contrast_toons, journey_diffuse). Returns (nodes, shader socket, (unit squashed
+    normal, k) sockets)."""
     nodes = []
 
     def math(operation, a, b=None, label=None):
@@ -156,4 +176,22 @@ def _diffuse_contrast(tree, inputs, normal):
     h.link(tree, shaders[0], both.inputs[0])
     h.link(tree, shaders[1], both.inputs[1])
     nodes.append(both)
-    return nodes, both.outputs[0]
+    return nodes, both.outputs[0], (unit.outputs[0], k)
+
+
+def _eevee_contrast(tree, inputs, squashed):
+    """One Diffuse BSDF on the unit squashed normal, its colour times min(1/c, k) / 2 (twin:
+    core.sand.journey_eevee_factor). Returns (nodes, shader socket)."""
+    unit, k = squashed
+    sun = h.vector_math(tree, "NORMALIZE", inputs["Sun Direction"], label="Towards the Sun")
+    cosine = h.vector_math(tree, "DOT_PRODUCT", unit, sun.outputs[0], label="c = N'·L")
+    held = h.math(tree, "MAXIMUM", cosine.outputs["Value"], 1e-4, label="c ≥ 0.0001")
+    inverse = h.math(tree, "DIVIDE", 1.0, held.outputs[0], label="1 / c")
+    capped = h.math(tree, "MINIMUM", inverse.outputs[0], k, label="min(1 / c, k)")
+    half = h.math(tree, "MULTIPLY", capped.outputs[0], 0.5, label="Factor (÷ 2: Cycles' scale)")
+    colour = h.vector_math(tree, "SCALE", inputs["Color"], label="Colour × Factor")
+    h.link(tree, half.outputs[0], colour.inputs["Scale"])
+    diffuse = h.add_node(tree, "ShaderNodeBsdfDiffuse", label="Diffuse Contrast (EEVEE)")
+    h.link(tree, colour.outputs[0], diffuse.inputs["Color"])
+    h.link(tree, unit, diffuse.inputs["Normal"])
+    return (sun, cosine, held, inverse, capped, half, colour, diffuse), diffuse.outputs[0]

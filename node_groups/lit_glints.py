@@ -14,7 +14,7 @@ from . import glint_cells, glint_facet, glint_splat
 from . import helper as h
 
 NAME = "Sandscape Lit Glints"
-VERSION = 6
+VERSION = 7
 TREE_TYPE = "ShaderNodeTree"
 DESCRIPTION = ("Sparkling sand lit by the sun: cells of grains sized to the pixel's footprint, a seeded "
                "random value per cell, mirror facets above Threshold that glint only where light "
@@ -69,17 +69,22 @@ def build(tree):
     h.link(tree, facet.outputs["Mirror"], h.socket(shown.inputs, "A"))
     h.link(tree, splat_mask[2], h.socket(shown.inputs, "B"))
     h.link(tree, h.socket(shown.outputs, "Result"), group_out.inputs["Mirror"])
+    facets = h.add_node(tree, "ShaderNodeMixShader", label="Facets: Cells or Splat")
+    h.link(tree, splat.outputs["Active"], facets.inputs["Fac"])
+    h.link(tree, facet.outputs["Facets"], facets.inputs[1])
+    h.link(tree, splat_mask[3], facets.inputs[2])
+    h.link(tree, facets.outputs[0], group_out.inputs["Facets"])
     h.link(tree, choose.outputs[0], group_out.inputs["Shader"])
     h.link(tree, h.socket(either.outputs, "Result"), group_out.inputs["Mask"])
     h.link(tree, facet.outputs["Facet Normal"], group_out.inputs["Facet Normal"])
     h.frame(tree, "Sparkles Put into Their Pixels", splat_nodes)
-    h.frame(tree, "Which Applies", (choose, either, shown))
+    h.frame(tree, "Which Applies", (choose, either, shown, facets))
     h.arrange(tree)
 
 
 def _splat(tree, inputs):
     """The base with each candidate's facet over its share of the pixel. Returns (the splat node,
-    (shader, mask) sockets, the nodes made)."""
+    (shader, mask, mirror shown, facets alone) sockets, the nodes made)."""
     splat = h.add_node(tree, "ShaderNodeGroup", node_tree=h.ensure_group(glint_splat), label="Glint Splat")
     for name in glint_splat.INPUTS:
         h.link(tree, inputs[name], splat.inputs[name])
@@ -109,4 +114,4 @@ def _splat(tree, inputs):
     h.link(tree, inputs["Base"], both.inputs[0])
     h.link(tree, shader, both.inputs[1])
     made.append(both)
-    return splat, (both.outputs[0], total, shown), made
+    return splat, (both.outputs[0], total, shown, shader), made

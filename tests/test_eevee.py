@@ -187,3 +187,53 @@ def test_sand_in_eevee_is_as_bright_as_in_cycles(eevee_scene, sandscape, elevati
           f"{plain / cycles - 1:+.1%} without")
     assert abs(balanced / cycles - 1.0) <= 0.17
     assert abs(balanced / cycles - 1.0) <= 0.5 * abs(plain / cycles - 1.0)
+
+
+@pytest.mark.parametrize("elevation", [10, 30, 60])
+def test_journey_sphere_in_eevee_is_the_seeds_contrast(eevee_scene, sandscape, elevation):
+    """Journey's material on a sphere in EEVEE, lit by a scene sun it was not built with: its EEVEE
+    output's diffuse is the seed's saturate(4 N'.L) / 2 pi within 0.05 (intensity 0..1). EEVEE
+    lights the Cycles output's Toon BSDFs as diffuse: rendered through it, the same sphere leaves
+    the seed's model."""
+    from test_sand_looks import DIFFUSE_TOLERANCE, sphere_normals
+
+    from core import sand as twin
+
+    res, scale = 96, 2.2
+    scene = eevee_scene
+    scene.render.resolution_x = scene.render.resolution_y = res
+    scene.view_settings.view_transform = "Standard"
+    scene.world = None
+    light = np.array([0.0, math.cos(math.radians(elevation)), math.sin(math.radians(elevation))])
+    sun = bpy.data.objects.new("Their Sun", bpy.data.lights.new("Their Sun", "SUN"))
+    sun.data.energy, sun.data.angle = 1.0, 0.0
+    sun.data.use_shadow = False  # the diffuse, not the shadow map: its acne left dark dots in full sun
+    sun.rotation_euler = (math.radians(90.0 - elevation), 0.0, math.pi)
+    scene.collection.objects.link(sun)
+    bpy.ops.mesh.primitive_uv_sphere_add(segments=128, ring_count=64, radius=1.0)
+    bpy.ops.object.shade_smooth()
+    assert bpy.ops.sandscape.add_sand_material(look="JOURNEY", ripples=False) == {"FINISHED"}
+    material = bpy.context.object.active_material
+    look = sandscape.addon.sand.look_node(material)
+    for name, value in (("Grain Strength", 0.0), ("Rim Strength", 0.0), ("Ocean Strength", 0.0),
+                        ("Color", (1.0, 1.0, 1.0, 1.0))):
+        look.inputs[name].default_value = value
+    sandscape.addon.sand.glint_node(material).inputs["Threshold"].default_value = 1.0
+    scenes.camera("ORTHO", location=(0.0, 0.0, 10.0), ortho_scale=scale)
+    scene.frame_set(scene.frame_current)  # the drivers read the sun
+    rendered = readback.render(scene)[..., 0].astype(np.float64) * 2 * np.pi
+    normals, inside = sphere_normals(res, scale)
+    inside &= normals[..., 2] > 0.4  # 3 px in from the silhouette EEVEE's 1.5 px filter blends
+    seed = twin.journey_contrast(normals, light)
+    error = np.abs(rendered - seed)[inside]
+    tree = material.node_tree
+    tree.nodes.remove(tree.nodes["Sandscape EEVEE Output"])
+    tree.nodes["Sandscape Output"].target = "ALL"
+    toons = readback.render(scene)[..., 0].astype(np.float64) * 2 * np.pi
+    toon_error = np.abs(toons - seed)[inside]
+    print(f"EEVEE journey sphere, sun {elevation} deg: against the seed's model max {error.max():.4f} "
+          f"(mean {error.mean():.4f}); through the Toons max {toon_error.max():.4f} "
+          f"(mean {toon_error.mean():.4f})")
+    assert np.isfinite(rendered).all()
+    assert error.max() <= DIFFUSE_TOLERANCE
+    assert toon_error.max() > 2 * DIFFUSE_TOLERANCE

@@ -19,19 +19,34 @@ def source(socket):
     return socket.links[0].from_socket if socket.links else None
 
 
-def test_physical_sand_gets_an_eevee_output_once_and_journey_none(sandscape):
+def test_each_look_gets_its_own_eevee_output_once(sandscape):
+    """Physical: the Cycles surface balanced. Journey: its EEVEE Shader, lit by the driven sun,
+    with the glints' facets (or emission) on top. Re-runs and switching looks leave one of each."""
     plane = readback.uv_plane()
     for _ in range(2):
         assert bpy.ops.sandscape.add_sand_material() == {"FINISHED"}
     material = plane.active_material
+    tree = material.node_tree
     assert outputs(material) == {"Sandscape Output": "CYCLES", "Sandscape EEVEE Output": "EEVEE"}
-    names = [node.name for node in material.node_tree.nodes]
+    names = [node.name for node in tree.nodes]
     assert len(names) == len(set(names))
-    assert bpy.ops.sandscape.add_sand_material(look="JOURNEY") == {"FINISHED"}
-    assert outputs(material) == {"Sandscape Output": "ALL"}
-    assert not any(name.startswith("Sandscape EEVEE") for name in material.node_tree.nodes.keys())
+    assert "Sandscape EEVEE Balance" in names and "Sandscape EEVEE Journey Surface" not in names
+    for glints, on_top in (("LIT", "Facets"), ("EMISSION", "Emission"), ("LIT", "Facets")):
+        assert bpy.ops.sandscape.add_sand_material(look="JOURNEY", glints=glints) == {"FINISHED"}
+        assert outputs(material) == {"Sandscape Output": "CYCLES", "Sandscape EEVEE Output": "EEVEE"}
+        names = [node.name for node in tree.nodes]
+        assert len(names) == len(set(names)) and "Sandscape EEVEE Balance" not in names
+        look, glint = sandscape.addon.sand.look_node(material), sandscape.addon.sand.glint_node(material)
+        surface = tree.nodes["Sandscape EEVEE Journey Surface"]
+        assert source(tree.nodes["Sandscape EEVEE Output"].inputs["Surface"]) == surface.outputs[0]
+        assert source(surface.inputs[0]) == look.outputs["EEVEE Shader"]
+        assert source(surface.inputs[1]) == glint.outputs[on_top]
+        assert source(look.inputs["Sun Direction"]) == tree.nodes["Sandscape EEVEE Sun"].outputs[0]
+        assert source(tree.nodes["Sandscape Output"].inputs["Surface"]).node in (
+            glint, tree.nodes.get(sandscape.addon.sand.GLINTS_ADDED))  # Cycles keeps its Toons
     assert bpy.ops.sandscape.add_sand_material(look="PHYSICAL") == {"FINISHED"}
     assert outputs(material) == {"Sandscape Output": "CYCLES", "Sandscape EEVEE Output": "EEVEE"}
+    assert "Sandscape EEVEE Journey Surface" not in tree.nodes
 
 
 def test_the_balance_follows_the_sun_and_the_prints_reach_eevee(sandscape):

@@ -94,6 +94,37 @@ def test_diffuse_contrast_is_the_seeds(journey, elevation):
         assert corrected_error > DIFFUSE_TOLERANCE
 
 
+@pytest.mark.parametrize("elevation", [10, 30, 60])
+def test_eevee_shaders_diffuse_is_the_seeds_contrast(journey, elevation):
+    """The EEVEE Shader output's one Diffuse BSDF, its colour undoing Lambert's cosine with the
+    sun it is given, is the seed's saturate(4 N'.L) / 2 pi: rendered here by Cycles' exact Lambert
+    (EEVEE's own render of it is in test_eevee.py). Its twin within 0.005; and given no sun, the
+    factor k / 2 of the twin."""
+    from mathutils import Vector
+
+    light = Vector((0.0, math.cos(math.radians(elevation)), math.sin(math.radians(elevation))))
+    values = {"Grain Strength": 0.0, "Rim Strength": 0.0, "Ocean Strength": 0.0,
+              "Color": (1.0, 1.0, 1.0, 1.0), "Sun Direction": tuple(3.0 * light)}  # any length
+    material = scenes.group_material(journey, values, output="EEVEE Shader")
+    material.cycles.use_bump_map_correction = False
+    rendered = render_sphere(material, light)[..., 0] * 2 * np.pi
+    normals, inside = sphere_normals(RES, SCALE)
+    inside &= normals[..., 2] > 0.05
+    seed = twin.journey_contrast(normals, np.array(light))
+    assert np.allclose(twin.journey_eevee(normals, np.array(light)) * 2 * np.pi, seed, atol=1e-9)
+    error = np.abs(rendered - seed)[inside].max()
+    print(f"journey EEVEE shader in Cycles, sun {elevation} deg: against the seed's model {error:.4f}")
+    assert error <= TWIN_TOLERANCE
+    if elevation == 30:  # no sun: Lambert on the squashed normal times k / 2
+        material.node_tree.nodes["Group"].inputs["Sun Direction"].default_value = (0.0, 0.0, 0.0)
+        for obj in list(bpy.data.objects):
+            bpy.data.objects.remove(obj)
+        unlit = render_sphere(material, light)[..., 0]
+        unit = twin.contrast_toons(normals)[0]
+        expected = twin.journey_eevee_factor(normals, (0.0, 0.0, 0.0)) * np.maximum(unit @ np.array(light), 0)
+        assert np.abs(unlit - expected / np.pi)[inside].max() <= TWIN_TOLERANCE / (2 * np.pi)
+
+
 @pytest.mark.parametrize("exponent", [16, 64, 256])
 def test_ocean_specular_is_as_wide_as_blinn_phong(journey, exponent):
     from mathutils import Vector
