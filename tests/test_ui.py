@@ -229,3 +229,19 @@ def test_adding_a_group_from_the_menu_ensures_it_first(sandscape):
     assert tuple(node.location) == (100.0, 50.0) and node.select
     result, reports = operators.run_execute("sandscape.add_node_group", context, group="Sandscape Gated Blur")
     assert result == {"CANCELLED"} and "CompositorNodeTree" in reports[0][1]  # not in a shader tree
+
+
+def test_the_sidebar_says_which_engine_a_setting_reaches(sandscape):
+    """Issue 27: where a setting reaches only Cycles (or EEVEE renders it otherwise), its section
+    says so; the sand says what EEVEE renders of each look."""
+    panels = sandscape.ui.panels
+    seen = []
+    for name in ("footprints", "atmosphere", "clouds"):
+        layout = RecordingLayout()
+        getattr(bpy.types, f"SANDSCAPE_PT_{name}").draw(types.SimpleNamespace(layout=layout), bpy.context)
+        seen += [c[1] for c in layout.calls if c[0] == "label"]
+    assert set(panels.ENGINE_NOTES.values()) <= set(seen)
+    readback.uv_plane()
+    for look in ("PHYSICAL", "JOURNEY"):
+        assert bpy.ops.sandscape.add_sand_material(look=look) == {"FINISHED"}
+        assert ("label", panels.SAND_IN_EEVEE[look]) in draw_panel()

@@ -46,6 +46,8 @@ class SANDSCAPE_PT_sand(SandscapeSubPanel, bpy.types.Panel):
         built = sand.structure(material)
         look = f"{built[0].title()} look, {built[1].lower()} glints" if built else ""
         layout.label(text=f"{material.name}: {look}", icon="MATERIAL")
+        if built and built[0] in ("PHYSICAL", "JOURNEY"):
+            layout.label(text=SAND_IN_EEVEE[built[0]], icon="INFO")
         # The material's own node sockets: edits here are the material, no copy to keep in sync.
         for part in (node, sand.look_node(material), sand.ripple_node(material)):
             if part is None:
@@ -59,6 +61,9 @@ class SANDSCAPE_PT_sand(SandscapeSubPanel, bpy.types.Panel):
         if image is not None:
             layout.template_ID(image, "image", open="image.open")
 
+
+SAND_IN_EEVEE = {"PHYSICAL": "EEVEE: its own output, balanced to Cycles' brightness",
+                 "JOURNEY": "EEVEE: its own output, the contrast lit by the scene's sun"}
 
 DUNE_SECTIONS = (
     ("Field", ("width", "depth", "cell_size", "horizon")),
@@ -216,12 +221,24 @@ class SANDSCAPE_PT_render(SandscapeSubPanel, bpy.types.Panel):
         row.operator("sandscape.optimize_scene", text="Optimize", icon="MODIFIER").dry_run = False
 
 
+# Section heading -> the settings under it that do not reach Cycles and EEVEE alike (the others do).
+ENGINE_NOTES = {
+    "Map": "Dicing Pixel Size: Cycles (EEVEE displaces the patch's vertices)",
+    "Sun and Air": "Density: Rayleigh's phase in Cycles, isotropic in EEVEE",
+    "Denoise": "Cycles only: it reads Cycles' denoising passes",
+    "Light": "Mie: Cycles only (EEVEE scatters it evenly)",
+    "Evaluation": "Step: Cycles only (EEVEE: the presets' volume tiles)",
+}
+
+
 def _sections(layout, settings, sections):
     for heading, names in sections:
         layout.label(text=heading)
         column = layout.column(align=True)
         for name in names:
             column.prop(settings, name)
+        if heading in ENGINE_NOTES:
+            layout.label(text=ENGINE_NOTES[heading], icon="INFO")
 
 
 classes = (SANDSCAPE_PT_main, SANDSCAPE_PT_dunes, SANDSCAPE_PT_sand, SANDSCAPE_PT_footprints,
