@@ -46,6 +46,21 @@ PRESETS = {"DRAFT": _preset(16, 16), "PREVIEW": _preset(72, 64),
                      DENOISE: True}}
 
 
+# EEVEE's own, chosen from bench/eevee_quality.py's curves (bench/RESULTS.md, "EEVEE quality"):
+# render samples (EEVEE's anti-aliasing, soft shadows and volume jitter all converge with them)
+# and the volume froxels' size in pixels. The finest froxels (2 px) cost the demo nothing at few
+# samples and a tenth at 64, and took a sixth off the error at 16: every preset has them.
+EEVEE_PRESETS = {"DRAFT": {"taa_render_samples": 16, "volumetric_tile_size": "2"},
+                 "PREVIEW": {"taa_render_samples": 64, "volumetric_tile_size": "2"},
+                 "FINAL": {"taa_render_samples": 128, "volumetric_tile_size": "2"}}
+
+
+def apply_eevee(scene, settings):
+    """Set EEVEE settings of a preset (or any dict of scene.eevee's keys) on the scene."""
+    for key, value in settings.items():
+        setattr(scene.eevee, key, value)
+
+
 def apply(scene, settings):
     """Set the Cycles settings of a preset (or any dict of the same keys) on the scene, and the
     compositor's denoising of all but the glints when the preset names it."""

@@ -112,8 +112,8 @@ def render(args):
         scene.render.resolution_percentage = 100
     if args.preset:
         bpy.ops.sandscape.apply_quality_preset(preset=args.preset.upper())
-    if args.samples is not None:
-        scene.cycles.samples = args.samples
+    if args.samples is not None:  # the file's engine's samples
+        scene.cycles.samples = scene.eevee.taa_render_samples = args.samples
     scene.render.image_settings.file_format = file_format
     scene.render.use_file_extension = False  # the name given is the name written
     # Frames after the first reuse the evaluated scene (the file is not saved): the clouds' voxel

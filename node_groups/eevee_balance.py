@@ -9,7 +9,7 @@ from ..core import eevee_balance as twin
 from . import helper as h
 
 NAME = "Sandscape EEVEE Balance"
-VERSION = 1
+VERSION = 2
 TREE_TYPE = "ShaderNodeTree"
 DESCRIPTION = ("Cycles' brightness of Sandscape sand over EEVEE's at this view, sun and normal: the "
                "factor the sand's EEVEE output applies")
@@ -42,12 +42,11 @@ def build(tree):
     l_, l_dot = _clamped_cosine(tree, light.outputs[0], normal, "N·L")
     # The azimuth between view and sun about the normal: their parts across the normal.
     across = []
-    for vector, label in ((view, "V"), (light.outputs[0], "L")):
-        along = h.vector_math(tree, "DOT_PRODUCT", vector, normal, label=f"N·{label}")
+    for vector, label, along in ((view, "V", v_dot), (light.outputs[0], "L", l_dot)):  # unclamped N·V, N·L
         back = h.vector_math(tree, "SCALE", normal, label=f"N (N·{label})")
         h.link(tree, along.outputs["Value"], back.inputs["Scale"])
         part = h.vector_math(tree, "SUBTRACT", vector, back.outputs[0], label=f"{label} Across")
-        across.append((part, (along, back, part)))
+        across.append((part, (back, part)))
     dot = h.vector_math(tree, "DOT_PRODUCT", across[0][0].outputs[0], across[1][0].outputs[0])
     lengths = [h.vector_math(tree, "LENGTH", part.outputs[0]) for part, _ in across]
     product = h.math(tree, "MULTIPLY", lengths[0].outputs["Value"], lengths[1].outputs["Value"])

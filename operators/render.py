@@ -40,34 +40,52 @@ class SANDSCAPE_OT_optimize_scene(SandscapeOperator, bpy.types.Operator):
 
 
 class SANDSCAPE_OT_apply_quality_preset(SandscapeOperator, bpy.types.Operator):
-    """Set Cycles' samples, denoising, volume sampling, dicing and bounces from a measured quality preset
-    (a scene in another engine is switched to Cycles, and the report says so)"""
+    """Set the render settings of a measured quality preset for the scene's engine: Cycles' samples,
+    denoising, volume sampling, dicing and bounces, or EEVEE's samples and volume tiles (Workbench,
+    or another engine asked for, is switched to, and the report says so)"""
 
     bl_idname = "sandscape.apply_quality_preset"
     bl_label = "Apply Quality Preset"
 
     preset: EnumProperty(
         name="Preset", default="PREVIEW",
-        items=(("DRAFT", "Draft", "16 samples, denoised but for the glints: composition and light"),
-               ("PREVIEW", "Preview", "72 samples, denoised but for the glints: clean enough to judge "
-                "glints and prints (the demo still)"),
-               ("FINAL", "Final", "512 samples, adaptive, unbiased volumes, Cycles' denoiser with the "
-                "glints kept raw: Blender's recipe, a fraction of its samples")))
+        items=(("DRAFT", "Draft", "Cycles: 16 samples, denoised but for the glints; EEVEE: its draft "
+                "samples and volume tiles. Composition and light"),
+               ("PREVIEW", "Preview", "Cycles: 72 samples, denoised but for the glints; EEVEE: more samples, "
+                "finer volume tiles. Clean enough to judge glints and prints (the demo still)"),
+               ("FINAL", "Final", "Cycles: 512 samples, adaptive, unbiased volumes, Cycles' denoiser with "
+                "the glints kept raw; EEVEE: its converged samples and finest volume tiles")))
 
     sharp_pixels: BoolProperty(
         name="Sharp Pixel Filter", default=False,
-        description="A half-pixel pixel filter: glints converge about four times faster, the image is "
-                    "crisper, and the denoised sand keeps less of its finest detail")
+        description="Cycles: a half-pixel pixel filter: glints converge about four times faster, the image "
+                    "is crisper, and the denoised sand keeps less of its finest detail")
+
+    engine: EnumProperty(
+        name="Engine", default="SCENE",
+        items=(("SCENE", "Scene's Engine", "The preset for the engine the scene renders with (Workbench: "
+                "Cycles)"),
+               ("CYCLES", "Cycles", "Cycles' preset, switching the scene to Cycles"),
+               ("EEVEE", "EEVEE", "EEVEE's preset, switching the scene to EEVEE")))
 
     def execute(self, context):
-        settings = dict(presets.PRESETS[self.preset], **(presets.SHARP_FILTER if self.sharp_pixels else {}))
-        engine = context.scene.render.engine
-        if engine != "CYCLES":  # the presets are Cycles settings, measured in Cycles
-            context.scene.render.engine = "CYCLES"
-        presets.apply(context.scene, settings)
+        scene = context.scene
+        before = scene.render.engine
+        wanted = self.engine if self.engine != "SCENE" else "EEVEE" if before == "BLENDER_EEVEE" else "CYCLES"
+        scene.render.engine = "BLENDER_EEVEE" if wanted == "EEVEE" else "CYCLES"
         switched = ""
-        if engine != "CYCLES":
-            switched = f"; render engine {engine.replace('BLENDER_', '').title()} → Cycles"
+        if scene.render.engine != before:
+            switched = (f"; render engine {before.replace('BLENDER_', '').title()} → "
+                        f"{'EEVEE' if wanted == 'EEVEE' else 'Cycles'}")
+        if wanted == "EEVEE":  # EEVEE's own presets, measured in EEVEE
+            settings = presets.EEVEE_PRESETS[self.preset]
+            presets.apply_eevee(scene, settings)
+            ignored = "; the sharp pixel filter is Cycles' and was left out" if self.sharp_pixels else ""
+            self.report({"INFO"}, f"{self.preset.title()} (EEVEE): "
+                        + ", ".join(f"{k} {v}" for k, v in settings.items()) + switched + ignored)
+            return {"FINISHED"}
+        settings = dict(presets.PRESETS[self.preset], **(presets.SHARP_FILTER if self.sharp_pixels else {}))
+        presets.apply(scene, settings)
         self.report({"INFO"}, f"{self.preset.title()} (Cycles): "
                     + ", ".join(f"{k} {v}" for k, v in settings.items()) + switched)
         return {"FINISHED"}

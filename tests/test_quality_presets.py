@@ -22,9 +22,11 @@ def readme_preset(name):
 @pytest.mark.parametrize("name", ["DRAFT", "PREVIEW", "FINAL"])
 def test_preset_sets_its_settings(sandscape, name):
     presets = sandscape.addon.presets
-    assert bpy.ops.sandscape.apply_quality_preset(preset=name) == {"FINISHED"}
-    settings = presets.PRESETS[name]
     scene = bpy.context.scene
+    scene.render.engine = "BLENDER_EEVEE"  # a new file's: Cycles' preset asked for switches it
+    assert bpy.ops.sandscape.apply_quality_preset(preset=name, engine="CYCLES") == {"FINISHED"}
+    assert scene.render.engine == "CYCLES"
+    settings = presets.PRESETS[name]
     for key, value in settings.items():
         if key == presets.DENOISE:
             continue
@@ -62,6 +64,7 @@ def test_sharp_pixel_filter_is_an_option_and_is_reported(sandscape):
     from devtools import operators
 
     cycles = bpy.context.scene.cycles
+    bpy.context.scene.render.engine = "CYCLES"
     cycles.pixel_filter_type, cycles.filter_width = "GAUSSIAN", 2.5  # the artist's own
     result, reports = operators.run_execute("sandscape.apply_quality_preset", preset="DRAFT")
     assert result == {"FINISHED"} and cycles.samples == sandscape.addon.presets.PRESETS["DRAFT"]["samples"]
@@ -82,3 +85,37 @@ def test_presets_get_cheaper_in_order(sandscape):
     # Cycles' denoiser only with unbiased volumes and adaptive sampling, where the bench put it.
     assert [name for name, settings in presets.items() if settings["use_denoising"]] == ["FINAL"]
     assert not presets["FINAL"]["volume_biased"] and presets["FINAL"]["use_adaptive_sampling"]
+
+
+@pytest.mark.parametrize("name", ["DRAFT", "PREVIEW", "FINAL"])
+def test_an_eevee_scene_gets_eevees_preset_and_stays_in_eevee(sandscape, name):
+    """Issue 27: EEVEE's own presets (bench/eevee_quality.py); Cycles' settings are left alone, and
+    the report says which engine's preset it was. Workbench is switched to Cycles, saying so."""
+    from devtools import operators
+
+    presets = sandscape.addon.presets
+    scene = bpy.context.scene
+    scene.render.engine = "BLENDER_EEVEE"
+    cycles_before = scene.cycles.samples
+    result, reports = operators.run_execute("sandscape.apply_quality_preset", preset=name, sharp_pixels=True)
+    assert result == {"FINISHED"} and scene.render.engine == "BLENDER_EEVEE"
+    for key, value in presets.EEVEE_PRESETS[name].items():
+        assert getattr(scene.eevee, key) == value, key
+    assert scene.cycles.samples == cycles_before
+    assert reports[-1][0] == {"INFO"} and "(EEVEE)" in reports[-1][1] and "left out" in reports[-1][1]
+    scene.render.engine = "BLENDER_WORKBENCH"
+    result, reports = operators.run_execute("sandscape.apply_quality_preset", preset=name)
+    assert result == {"FINISHED"} and scene.render.engine == "CYCLES"
+    assert "Workbench → Cycles" in reports[-1][1]
+    result, reports = operators.run_execute("sandscape.apply_quality_preset", preset=name, engine="EEVEE")
+    assert result == {"FINISHED"} and scene.render.engine == "BLENDER_EEVEE"
+    assert "Cycles → EEVEE" in reports[-1][1] and scene.eevee.taa_render_samples == \
+        presets.EEVEE_PRESETS[name]["taa_render_samples"]
+
+
+def test_eevee_presets_get_finer_in_order(sandscape):
+    presets = sandscape.addon.presets.EEVEE_PRESETS
+    order = [presets[name] for name in ("DRAFT", "PREVIEW", "FINAL")]
+    samples = [p["taa_render_samples"] for p in order]
+    tiles = [int(p["volumetric_tile_size"]) for p in order]
+    assert samples == sorted(samples) and tiles == sorted(tiles, reverse=True)

@@ -211,7 +211,8 @@ class SANDSCAPE_PT_render(SandscapeSubPanel, bpy.types.Panel):
 
     def draw(self, context):
         layout = self.layout
-        layout.label(text="Quality (measured presets)")
+        engine = "EEVEE" if context.scene.render.engine == "BLENDER_EEVEE" else "Cycles"
+        layout.label(text=f"Quality (measured presets, {engine})")
         row = layout.row(align=True)
         for preset, text in (("DRAFT", "Draft"), ("PREVIEW", "Preview"), ("FINAL", "Final")):
             row.operator("sandscape.apply_quality_preset", text=text).preset = preset
