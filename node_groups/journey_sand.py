@@ -100,19 +100,9 @@ def build(tree):
     h.link(tree, roughness.outputs[0], ocean.inputs["Roughness"])
     h.link(tree, normal, ocean.inputs["Normal"])
 
-    lit = h.add_node(tree, "ShaderNodeAddShader", label="Diffuse + Rim")
-    h.link(tree, contrast, lit.inputs[0])
-    h.link(tree, rim.outputs[0], lit.inputs[1])
-    total = h.add_node(tree, "ShaderNodeAddShader", label="+ Ocean Specular")
-    h.link(tree, lit.outputs[0], total.inputs[0])
-    h.link(tree, ocean.outputs[0], total.inputs[1])
+    lit, total = _summed(tree, contrast, rim.outputs[0], ocean.outputs[0], "")
     h.link(tree, total.outputs[0], group_out.inputs["Shader"])
-    eevee_lit = h.add_node(tree, "ShaderNodeAddShader", label="EEVEE: Diffuse + Rim")
-    h.link(tree, eevee_contrast, eevee_lit.inputs[0])
-    h.link(tree, rim.outputs[0], eevee_lit.inputs[1])
-    eevee_total = h.add_node(tree, "ShaderNodeAddShader", label="EEVEE: + Ocean Specular")
-    h.link(tree, eevee_lit.outputs[0], eevee_total.inputs[0])
-    h.link(tree, ocean.outputs[0], eevee_total.inputs[1])
+    eevee_lit, eevee_total = _summed(tree, eevee_contrast, rim.outputs[0], ocean.outputs[0], "EEVEE: ")
     h.link(tree, eevee_total.outputs[0], group_out.inputs["EEVEE Shader"])
     h.link(tree, normal, group_out.inputs["Normal"])
     h.link(tree, weight.outputs[0], group_out.inputs["Rim Weight"])
@@ -125,6 +115,17 @@ def build(tree):
     h.frame(tree, "Diffuse Contrast for EEVEE", eevee_nodes)
     h.frame(tree, "EEVEE Combined", (eevee_lit, eevee_total))
     h.arrange(tree)
+
+
+def _summed(tree, diffuse, rim, ocean, prefix):
+    """diffuse + rim + ocean specular, as two Add Shader nodes (returned)."""
+    lit = h.add_node(tree, "ShaderNodeAddShader", label=f"{prefix}Diffuse + Rim")
+    h.link(tree, diffuse, lit.inputs[0])
+    h.link(tree, rim, lit.inputs[1])
+    total = h.add_node(tree, "ShaderNodeAddShader", label=f"{prefix}+ Ocean Specular")
+    h.link(tree, lit.outputs[0], total.inputs[0])
+    h.link(tree, ocean, total.inputs[1])
+    return lit, total
 
 
 def _diffuse_contrast(tree, inputs, normal):
