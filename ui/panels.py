@@ -225,9 +225,9 @@ class SANDSCAPE_PT_render(SandscapeSubPanel, bpy.types.Panel):
 # Section heading -> the settings under it that do not reach Cycles and EEVEE alike (the others do).
 ENGINE_NOTES = {
     "Map": "Dicing Pixel Size: Cycles (EEVEE displaces the patch's vertices)",
-    "Sun and Air": "Density: Rayleigh's phase in Cycles, isotropic in EEVEE",
+    "Sun and Air": "Density: Rayleigh's phase is Cycles only",
     "Denoise": "Cycles only: it reads Cycles' denoising passes",
-    "Light": "Mie: Cycles only (EEVEE scatters it evenly)",
+    "Light": "Mie: Cycles only; EEVEE merges the dual lobes",
     "Evaluation": "Step: Cycles only (EEVEE: the presets' volume tiles)",
 }
 
