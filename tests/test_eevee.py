@@ -72,13 +72,24 @@ def test_prints_displace_in_eevee(eevee_scene, sandscape):
     bpy.ops.object.light_add(type="SUN", rotation=(math.radians(75), 0.0, math.radians(90)))
     scenes.camera("PERSP", location=(0.0, -1.4, 1.0), rotation=(math.radians(50), 0, 0), lens=35)
     eevee_scene.frame_set(31)
-    pressed = readback.render(eevee_scene)
     node = sandscape.addon.sand.footprint_node(material)
-    node.inputs["Depth"].default_value = node.inputs["Rim"].default_value = 0.0
-    flat = readback.render(eevee_scene)
-    changed = np.abs(pressed - flat)[..., :3].max(-1) > 0.05
-    print(f"EEVEE: prints change {changed.sum()} of {changed.size} pixels")
-    assert np.isfinite(pressed).all() and changed.sum() >= 0.015 * changed.size  # 2.2 % when written
+    kept = node.inputs["Depth"].default_value, node.inputs["Rim"].default_value
+    changed = {}
+    for engine in ("BLENDER_EEVEE", "CYCLES"):  # issue 27: prints change the picture as in Cycles
+        eevee_scene.render.engine = engine
+        eevee_scene.cycles.samples = 64
+        node.inputs["Depth"].default_value, node.inputs["Rim"].default_value = kept
+        pressed = readback.render(eevee_scene)
+        node.inputs["Depth"].default_value = node.inputs["Rim"].default_value = 0.0
+        flat = readback.render(eevee_scene)
+        assert np.isfinite(pressed).all()
+        changed[engine] = np.abs(pressed - flat)[..., :3].max(-1) > 0.05
+    eevee, cycles = changed["BLENDER_EEVEE"], changed["CYCLES"]
+    both = (eevee & cycles).sum() / max((eevee | cycles).sum(), 1)
+    print(f"prints change {eevee.sum()} of {eevee.size} pixels in EEVEE, {cycles.sum()} in Cycles; "
+          f"{both:.0%} of those changed in either changed in both")
+    assert eevee.sum() >= 0.015 * eevee.size  # 2.2 % when written
+    assert 0.5 <= eevee.sum() / cycles.sum() <= 2.0 and both >= 0.3
 
 
 @pytest.mark.parametrize("resolution", [SIZE, (0, 0)], ids=["splat", "cells"])
