@@ -98,6 +98,21 @@ def follow_sun(material, scene):
             drivers.drive(socket, "default_value", expression, drivers.lamp_axis(sun))
 
 
+def follows_scene_sun(material, scene):
+    """False when the EEVEE output's driven sun is not the scene's sun lamp (one added or swapped
+    after the material was made): Update Sand Material or Add Atmosphere points it there."""
+    tree = material.node_tree if material is not None else None
+    if own.node(tree, SUN) is None:
+        return True
+    sun = scene_sun(scene)
+    path = f'nodes["{SUN}"].inputs[0].default_value'
+    curves = tree.animation_data.drivers if tree.animation_data is not None else ()
+    driver = next((c.driver for c in curves if c.data_path == path), None)
+    if driver is None or not driver.variables:
+        return sun is None
+    return sun is not None and driver.variables[0].targets[0].id == sun
+
+
 def follow_scene_sun(scene):
     """Every balanced sand material in the scene follows the scene's sun (Add Atmosphere made or
     found one). Returns how many."""

@@ -245,3 +245,19 @@ def test_the_sidebar_says_which_engine_a_setting_reaches(sandscape):
     for look in ("PHYSICAL", "JOURNEY"):
         assert bpy.ops.sandscape.add_sand_material(look=look) == {"FINISHED"}
         assert ("label", panels.SAND_IN_EEVEE[look]) in draw_panel()
+
+
+def test_the_sand_panel_says_when_eevee_does_not_follow_a_new_sun(sandscape):
+    """A sun lamp added after the sand material drives nothing yet: the panel says so until Update
+    Sand Material points the EEVEE output's sun at it."""
+    import math
+
+    readback.uv_plane()
+    assert bpy.ops.sandscape.add_sand_material(look="JOURNEY") == {"FINISHED"}
+    assert ("label", sandscape.ui.panels.NEW_SUN) not in draw_panel()  # no sun, none driven
+    plane = bpy.context.active_object
+    bpy.ops.object.light_add(type="SUN", rotation=(math.radians(40), 0.0, 0.0))
+    bpy.context.view_layer.objects.active = plane
+    assert ("label", sandscape.ui.panels.NEW_SUN) in draw_panel()
+    assert bpy.ops.sandscape.add_sand_material(look="JOURNEY") == {"FINISHED"}
+    assert ("label", sandscape.ui.panels.NEW_SUN) not in draw_panel()

@@ -4,7 +4,7 @@ poll() allows."""
 
 import bpy
 
-from ..addon import atmosphere, dunes, rig_feet, sand
+from ..addon import atmosphere, dunes, rig_feet, sand, sand_eevee
 
 
 class SandscapeTab:
@@ -48,6 +48,8 @@ class SANDSCAPE_PT_sand(SandscapeSubPanel, bpy.types.Panel):
         layout.label(text=f"{material.name}: {look}", icon="MATERIAL")
         if built and built[0] in ("PHYSICAL", "JOURNEY"):
             layout.label(text=SAND_IN_EEVEE[built[0]], icon="INFO")
+            if not sand_eevee.follows_scene_sun(material, context.scene):
+                layout.label(text=NEW_SUN, icon="ERROR")
         # The material's own node sockets: edits here are the material, no copy to keep in sync.
         for part in (node, sand.look_node(material), sand.ripple_node(material)):
             if part is None:
@@ -64,6 +66,8 @@ class SANDSCAPE_PT_sand(SandscapeSubPanel, bpy.types.Panel):
 
 SAND_IN_EEVEE = {"PHYSICAL": "EEVEE: its own output, balanced to Cycles' brightness",
                  "JOURNEY": "EEVEE: its own output, the contrast lit by the scene's sun"}
+
+NEW_SUN = "EEVEE: a new sun lamp; Update Sand Material to follow it"
 
 DUNE_SECTIONS = (
     ("Field", ("width", "depth", "cell_size", "horizon")),
