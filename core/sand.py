@@ -99,18 +99,22 @@ def journey_contrast(normal, light, size=TOON_SIZE, squash=SQUASH):
     return np.clip(np.sum(squashed * np.asarray(light, np.float64), axis=-1) / threshold, 0.0, 1.0)
 
 
+def _squashed(normal, size, squash):
+    """(unit squashed normal, k = |N'| / cos(size x 90 deg)): what every Journey contrast twin starts from."""
+    squashed = _unit(normal) * np.array([1.0, 1.0, squash])
+    return _unit(squashed), np.linalg.norm(squashed, axis=-1) / max(np.cos(size * np.pi / 2), 1e-4)
+
+
 def contrast_toons(normal, size=TOON_SIZE, squash=SQUASH):
     """How the node group renders journey_contrast with Toon BSDFs, whose light is a function
     of the angle to their normal only: on the unit squashed normal the contrast is
     min(1, k cos angle), k = |N'| / cos(size x 90 deg); two Toons ramp it in two straight
     pieces (fully lit up to acos(1/k), the knee halfway to 90 degrees).
     Returns (unit normal, full angle, knee angle, light at full, light at the knee)."""
-    squashed = _unit(normal) * np.array([1.0, 1.0, squash])
-    length = np.linalg.norm(squashed, axis=-1)
-    k = length / max(np.cos(size * np.pi / 2), 1e-4)
+    unit, k = _squashed(normal, size, squash)
     full = np.arccos(np.minimum(1.0 / np.maximum(k, 1e-12), 1.0))
     knee = 0.5 * full + np.pi / 4
-    return _unit(squashed), full, knee, np.minimum(k, 1.0), k * np.cos(knee)
+    return unit, full, knee, np.minimum(k, 1.0), k * np.cos(knee)
 
 
 def journey_diffuse(normal, light, size=TOON_SIZE, squash=SQUASH):
@@ -130,22 +134,22 @@ def journey_diffuse(normal, light, size=TOON_SIZE, squash=SQUASH):
 def journey_eevee_factor(normal, light, size=TOON_SIZE, squash=SQUASH):
     """The colour factor of the EEVEE Shader's one Diffuse BSDF on the unit squashed normal:
     min(1/c, k) / 2, c = that normal . the unit light (no light: c = 0, the factor k / 2)."""
-    unit, _, _, _, _ = contrast_toons(normal, size, squash)
-    squashed = _unit(normal) * np.array([1.0, 1.0, squash])
-    k = np.linalg.norm(squashed, axis=-1) / max(np.cos(size * np.pi / 2), 1e-4)
-    light = np.asarray(light, np.float64)
-    length = np.linalg.norm(light)
-    cosine = np.sum(unit * (light / length if length > 0 else light), axis=-1)
-    return 0.5 * np.minimum(1.0 / np.maximum(cosine, 1e-4), k)
+    unit, k = _squashed(normal, size, squash)
+    return 0.5 * np.minimum(1.0 / np.maximum(_cosine(unit, light), 1e-4), k)
 
 
 def journey_eevee(normal, light, size=TOON_SIZE, squash=SQUASH):
     """Radiance per unit of sun irradiance and albedo of the EEVEE Shader's diffuse: Lambert's
     max(c, 0) / pi times the factor, which is journey_contrast / 2 pi (the Cycles output's scale)."""
-    unit, _, _, _, _ = contrast_toons(normal, size, squash)
+    unit, _ = _squashed(normal, size, squash)
+    return np.maximum(_cosine(unit, light), 0.0) / np.pi * journey_eevee_factor(normal, light, size, squash)
+
+
+def _cosine(unit, light):
+    """unit . the unit light (a zero light: 0)."""
     light = np.asarray(light, np.float64)
-    cosine = np.sum(unit * light / np.linalg.norm(light), axis=-1)
-    return np.maximum(cosine, 0.0) / np.pi * journey_eevee_factor(normal, light, size, squash)
+    length = np.linalg.norm(light)
+    return np.sum(unit * (light / length if length > 0 else light), axis=-1)
 
 
 def ocean_roughness(exponent):
