@@ -10,6 +10,7 @@ from mathutils import Vector
 
 from . import atmosphere, evaluation, post, sand, sun_screen
 from . import ownership as own
+from .post_passes import CYCLES, EEVEE
 
 VOLUME_SHADERS = {"ShaderNodeVolumeScatter", "ShaderNodeVolumeAbsorption", "ShaderNodeVolumePrincipled",
                   "ShaderNodeVolumeCoefficients"}
@@ -30,13 +31,21 @@ class Decision:
 
 
 def decisions(scene):
+    """What the scene's render engine spends on and the image does not show. Cycles' settings
+    (adaptive dicing, volume bounces, its passes) cost nothing in EEVEE and are left alone there,
+    as EEVEE's passes are in Cycles."""
+    cycles = not for_eevee(scene)
     found = []
-    for check in (_empty_volumes, _empty_world_volume, _idle_adaptive_subdivision, _dark_glints,
-                  _idle_god_rays):
-        found.extend(check(scene))
-    found.extend(_idle_volume_bounces(scene, found))
+    for check in (_empty_volumes, _empty_world_volume, _idle_adaptive_subdivision if cycles else None,
+                  _dark_glints, _idle_god_rays):
+        found.extend(check(scene) if check else ())
+    found.extend(_idle_volume_bounces(scene, found) if cycles else ())
     found.extend(_unused_passes(scene, found))
     return found
+
+
+def for_eevee(scene):
+    return scene.render.engine == EEVEE
 
 
 def _renderable(scene):
@@ -215,19 +224,21 @@ def _idle_volume_bounces(scene, found):
                        lambda s=scene: setattr(s.cycles, "volume_bounces", 0), IDLE_BOUNCES, scene)
 
 
-PASSES = {  # Render Layers output -> (owner path, property)
-    "Volume Direct": ("cycles", "use_pass_volume_direct"),
-    "Volume Indirect": ("cycles", "use_pass_volume_indirect"),
-    "Environment": ("", "use_pass_environment"),
-    "Depth": ("", "use_pass_z"),
-    "Mist": ("", "use_pass_mist"),
-    "Normal": ("", "use_pass_normal"),
-    "Position": ("", "use_pass_position"),
-    "Emission": ("", "use_pass_emit"),
-    "Ambient Occlusion": ("", "use_pass_ambient_occlusion"),
-    "Diffuse Direct": ("", "use_pass_diffuse_direct"),
-    "Glossy Direct": ("", "use_pass_glossy_direct"),
-}
+PASSES = (  # (Render Layers output, owner path, property, the engine it costs in; None: both)
+    ("Volume Direct", "cycles", "use_pass_volume_direct", CYCLES),
+    ("Volume Indirect", "cycles", "use_pass_volume_indirect", CYCLES),
+    ("Volume Direct", "eevee", "use_pass_volume_direct", EEVEE),
+    ("Transparent", "eevee", "use_pass_transparent", EEVEE),
+    ("Environment", "", "use_pass_environment", None),
+    ("Depth", "", "use_pass_z", None),
+    ("Mist", "", "use_pass_mist", None),
+    ("Normal", "", "use_pass_normal", None),
+    ("Position", "", "use_pass_position", None),
+    ("Emission", "", "use_pass_emit", None),
+    ("Ambient Occlusion", "", "use_pass_ambient_occlusion", None),
+    ("Diffuse Direct", "", "use_pass_diffuse_direct", None),
+    ("Glossy Direct", "", "use_pass_glossy_direct", None),
+)
 
 
 def _unused_passes(scene, found):
@@ -241,8 +252,11 @@ def _unused_passes(scene, found):
                 used |= {socket.name for socket in node.outputs if socket.is_linked}
     if any(node.bl_idname == "CompositorNodeOutputFile" for node in (tree.nodes if tree else ())):
         return  # file outputs may write any pass
+    engine = EEVEE if for_eevee(scene) else CYCLES
     for layer in scene.view_layers:
-        for name, (owner, prop) in PASSES.items():
+        for name, owner, prop, costs_in in PASSES:
+            if costs_in not in (None, engine):
+                continue
             holder = getattr(layer, owner) if owner else layer
             if getattr(holder, prop, False) and name not in used:
                 yield Decision(f"View layer '{layer.name}': pass '{name}' is rendered but nothing "

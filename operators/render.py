@@ -9,8 +9,9 @@ from .base import SandscapeOperator
 
 
 class SANDSCAPE_OT_optimize_scene(SandscapeOperator, bpy.types.Operator):
-    """Switch off what does not reach the image: empty volumes, idle adaptive subdivision, dark glints,
-    god rays with the sun out of view, idle volume bounces, passes nothing reads"""
+    """Switch off what does not reach the image in the scene's engine: empty volumes, idle adaptive
+    subdivision, dark glints, god rays with the sun out of view, idle volume bounces, passes nothing
+    reads (in EEVEE, Cycles' settings are left alone)"""
 
     bl_idname = "sandscape.optimize_scene"
     bl_label = "Optimize Scene"
@@ -35,7 +36,9 @@ class SANDSCAPE_OT_optimize_scene(SandscapeOperator, bpy.types.Operator):
                 if not batch:
                     break
         verb = "Would switch off" if self.dry_run else "Switched off"
-        self.report({"INFO"}, f"{verb} {len(found)} thing(s)" if found else "Nothing to switch off")
+        engine = " in EEVEE (Cycles' settings left alone)" if optimize.for_eevee(context.scene) else ""
+        self.report({"INFO"}, f"{verb} {len(found)} thing(s){engine}" if found else
+                    f"Nothing to switch off{engine}")
         return {"FINISHED"}
 
 

@@ -103,3 +103,24 @@ def test_dark_glints_idle_rays_and_bounces(sandscape, wasteful_demo):
     assert output.inputs["Surface"].links[0].from_node == sandscape.addon.sand.look_node(material)
     assert sandscape.addon.sun_screen.rays_node(scene.compositing_node_group) is None
     assert scene.cycles.volume_bounces == 0
+
+
+def test_in_eevee_it_weighs_what_eevee_renders(wasteful_demo):
+    """In EEVEE, Cycles' dicing, volume bounces and passes cost nothing and stay as they are;
+    EEVEE's own unread passes and what both engines spend on (an empty volume, a pass) go."""
+    scene, fog, slab, dicing = wasteful_demo
+    scene.render.engine = "BLENDER_EEVEE"
+    layer = scene.view_layers[0]
+    layer.eevee.use_pass_transparent = True
+    layer.cycles.use_pass_volume_indirect = True  # Cycles' pass: not EEVEE's cost
+    lines = run(dry_run=False)
+    assert fog.hide_render and not layer.use_pass_z and not layer.eevee.use_pass_transparent
+    assert dicing.use_adaptive_subdivision and scene.cycles.volume_bounces == 2
+    assert layer.cycles.use_pass_volume_indirect
+    assert not any("Flat Slab" in line or "Volume bounces" in line for line in lines)
+    assert any("pass 'Transparent'" in line for line in lines)
+    assert lines[-1].endswith("in EEVEE (Cycles' settings left alone)")
+    scene.render.engine = "CYCLES"  # the same scene in Cycles: its own waste, not EEVEE's
+    layer.eevee.use_pass_transparent = True
+    lines = run(dry_run=True)
+    assert any("Flat Slab" in line for line in lines) and not any("Transparent" in line for line in lines)
