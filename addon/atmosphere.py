@@ -24,7 +24,7 @@ from .sun_lamp import ensure_sun, is_ours, scene_sun  # noqa: F401 (the atmosphe
 
 # Bump when build_sky_nodes changes: a world built by an older version is rebuilt.
 WORLD_NODES_KEY = "sandscape_sky_nodes"
-WORLD_NODES_VERSION = 2
+WORLD_NODES_VERSION = 3
 CLEAR = 0.01  # the haze may end where less than 1 % of the light behind it gets through
 MAX_REACH_M = 20000.0  # thin air would otherwise ask for a box hundreds of kilometres wide
 DEFAULT_WORLD_GREYS = (0.0508761, 0.05)  # a new file's world colour and a new world's, linear
@@ -34,7 +34,9 @@ def build_sky_nodes(tree):
     """Sky light without a sun disc for every ray but camera rays, which see the disc as well.
 
     The lamp lights the scene; a disc in the lighting sky would light it twice, yet without
-    one the camera would see no sun at all.
+    one the camera would see no sun at all. EEVEE gets its own output: the same sky for the
+    camera, and for the lighting the sky weighted by direction (core.atmosphere.eevee_sky_weight)
+    so that its spherical-harmonic lighting of the ground matches the sky Cycles integrates.
     """
     tree.nodes.clear()
     lighting = h.add_node(tree, "ShaderNodeTexSky", name="Sandscape Sky", label="Sky",
@@ -53,7 +55,37 @@ def build_sky_nodes(tree):
     h.link(tree, lit.outputs[0], mix.inputs[1])
     h.link(tree, shown.outputs[0], mix.inputs[2])
     h.link(tree, mix.outputs[0], output.inputs["Surface"])
+    output.target = "CYCLES"
+    _eevee_sky_output(tree, lighting, ray, shown)
     h.arrange(tree, set_widths=False)
+
+
+def _eevee_sky_output(tree, lighting, ray, shown):
+    """The world output EEVEE renders: the sky for camera rays, the weighted sky for lighting."""
+    direction = h.add_node(tree, "ShaderNodeTexCoord", name="Sandscape EEVEE Sky Direction")
+    unit = h.add_node(tree, "ShaderNodeVectorMath", operation="NORMALIZE")
+    h.link(tree, direction.outputs["Generated"], unit.inputs[0])
+    axes = h.add_node(tree, "ShaderNodeSeparateXYZ")
+    h.link(tree, unit.outputs[0], axes.inputs[0])
+    up = h.add_node(tree, "ShaderNodeMath", operation="MAXIMUM", inputs={1: 0.0})
+    h.link(tree, axes.outputs["Z"], up.inputs[0])
+    spread = h.add_node(tree, "ShaderNodeMath", operation="MULTIPLY_ADD",
+                        inputs={1: 0.5 * air.EEVEE_BAND_ONE, 2: 0.25})
+    h.link(tree, up.outputs[0], spread.inputs[0])
+    weight = h.add_node(tree, "ShaderNodeMath", operation="DIVIDE", name="Sandscape EEVEE Sky Weight")
+    h.link(tree, up.outputs[0], weight.inputs[0])
+    h.link(tree, spread.outputs[0], weight.inputs[1])
+    weighted = h.add_node(tree, "ShaderNodeVectorMath", operation="SCALE")
+    h.link(tree, lighting.outputs["Color"], weighted.inputs[0])
+    h.link(tree, weight.outputs[0], weighted.inputs["Scale"])
+    lit = h.add_node(tree, "ShaderNodeBackground", name="Sandscape EEVEE Sky Light")
+    h.link(tree, weighted.outputs[0], lit.inputs["Color"])
+    mix = h.add_node(tree, "ShaderNodeMixShader", name="Sandscape EEVEE Camera Sees the Disc")
+    h.link(tree, ray.outputs["Is Camera Ray"], mix.inputs["Fac"])
+    h.link(tree, lit.outputs[0], mix.inputs[1])
+    h.link(tree, shown.outputs[0], mix.inputs[2])
+    output = h.add_node(tree, "ShaderNodeOutputWorld", name="Sandscape EEVEE World Output", target="EEVEE")
+    h.link(tree, mix.outputs[0], output.inputs["Surface"])
 
 
 def is_untouched_default(world):

@@ -70,3 +70,19 @@ def sun_direction(elevation, azimuth):
     """Unit vector towards the sun; azimuth is measured from +Y towards +X (compass style)."""
     return np.array([np.cos(elevation) * np.sin(azimuth), np.cos(elevation) * np.cos(azimuth),
                      np.sin(elevation)])
+
+
+EEVEE_BAND_ONE = 0.86  # EEVEE's damping of the first band, from a lit upper hemisphere (tests/test_eevee.py)
+
+
+def eevee_sky_weight(up, band_one=EEVEE_BAND_ONE):
+    """The factor on the sky's radiance in EEVEE's lighting world, by the direction's up component.
+
+    EEVEE lights diffuse surfaces from the world's first two spherical-harmonic bands, where a
+    direction d reaches a normal n with weight 1/4 + b (d.n)/2 (per unit of radiance, over pi; b
+    its damping of the second band) instead of max(0, d.n). A low sun's bright, warm sky near the
+    horizon then lights flat sand three times over. Weighted by max(0, d_z) / (1/4 + b d_z/2), the
+    sky lights an upward normal as the true integral does, for any sky; below the horizon, nothing.
+    """
+    up = np.maximum(np.asarray(up, np.float64), 0.0)
+    return up / (0.25 + 0.5 * band_one * up)

@@ -26,9 +26,10 @@ BALANCE_RANGE = (0.5, 5.0)  # the fitted balance is held inside what the measure
 DEGREE = 3
 # exp(sum c v^i l^j a^k) over the terms (i, j, k), total degree at most DEGREE.
 TERMS = tuple(t for t in itertools.product(range(DEGREE + 1), repeat=3) if sum(t) <= DEGREE)
-# Fitted to devtools/eevee_balance.json (devtools/eevee_balance_data.py, Blender 5.2.3).
-COEFFICIENTS = (1.2623, -0.0321, 0.5475, -0.0321, -2.6761, -0.9516, -0.4284, -0.47, 0.9799, 1.2038,
-                -3.0935, -0.443, -0.3151, 6.8319, -0.0704, -2.1788, 0.7799, 0.6211, -2.0744, 0.3805)
+# Fitted to devtools/eevee_balance.json (devtools/eevee_balance_data.py, Blender 5.2.3), under the
+# sky's EEVEE lighting output.
+COEFFICIENTS = (1.4786, -0.0111, 0.5601, -0.0111, -3.2836, -1.0046, -0.435, 0.2459, 0.9948, 0.912,
+                -3.2934, -0.5449, -0.3263, 7.0841, -0.0141, -2.2435, 0.9802, 0.674, -2.1993, 0.318)
 
 
 def _unit(vector):

@@ -60,3 +60,22 @@ def test_sun_direction_is_a_unit_vector_up_at_ninety_degrees():
     assert np.linalg.norm(air.sun_direction(0.3, 2.0)) == pytest.approx(1.0)
     assert air.sun_direction(np.pi / 2, 1.0) == pytest.approx([0.0, 0.0, 1.0])
     assert air.sun_direction(0.0, 0.0) == pytest.approx([0.0, 1.0, 0.0])
+
+
+def test_the_weighted_sky_lights_upward_ground_exactly_through_two_bands():
+    """The weight of EEVEE's lighting sky, against a numpy integral over the sphere: for skies
+    bright near the horizon, overhead or below it, the first two spherical-harmonic bands (the
+    second damped as EEVEE does) give an upward normal the exact cosine-weighted irradiance;
+    without the weight a low bright sky lights the ground up to three times over."""
+    rng = np.random.default_rng(7)
+    up = np.linspace(-1.0, 1.0, 4001)  # the sphere in equal-area bands of d_z (azimuth integrated)
+    weight, band = air.eevee_sky_weight(up), air.EEVEE_BAND_ONE
+    for _ in range(20):
+        glow, width = rng.uniform(-0.2, 1.0), rng.uniform(0.02, 0.5)  # a bright band of sky
+        radiance = 0.2 + rng.uniform(1.0, 50.0) * np.exp(-((up - glow) / width) ** 2)
+        exact = np.trapezoid(radiance * np.maximum(up, 0.0), up)
+        through_bands = np.trapezoid(radiance * weight * (0.25 + 0.5 * band * up), up)
+        assert through_bands == pytest.approx(exact, rel=1e-9)
+    low = np.exp(-((up - 0.1) / 0.05) ** 2)  # a low sun's glow
+    plain = np.trapezoid(low * (0.25 + 0.5 * band * up), up) / np.trapezoid(low * np.maximum(up, 0.0), up)
+    assert plain > 2.5

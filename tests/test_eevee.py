@@ -10,6 +10,7 @@ import pytest
 from devtools import readback, scenes
 
 SIZE = (64, 36)
+SKY_TOLERANCE = 0.06  # per channel: EEVEE's sky lighting of the ground against Cycles'
 
 
 @pytest.fixture
@@ -270,3 +271,34 @@ def test_clouds_cover_their_share_of_sky_in_eevee(eevee_scene):
     print(f"EEVEE clouds: {covered:.3f} of the sky under cloud (Coverage 0.5)")
     assert np.isfinite(seen).all()
     assert covered == pytest.approx(0.5, abs=COVERAGE_TOLERANCE)
+
+
+@pytest.mark.parametrize("elevation", [6.0, 30.0])
+def test_the_sky_lights_the_ground_in_eevee_as_in_cycles(eevee_scene, sandscape, elevation):
+    """A grey plane lit by Add Atmosphere's sky alone (the lamp hidden), from above: EEVEE's mean
+    colour against Cycles' exact integral of the sky, per channel. Through the world's EEVEE output
+    (the lighting sky weighted, core.atmosphere.eevee_sky_weight) and through the plain sky, which
+    EEVEE's spherical harmonics let light the ground with the bright low sky near the sun."""
+    bpy.ops.mesh.primitive_plane_add(size=100)
+    bpy.context.active_object.data.materials.append(scenes.single_node_material(
+        "Grey", "ShaderNodeBsdfDiffuse", Color=(0.5, 0.5, 0.5, 1.0)))
+    air = eevee_scene.sandscape_atmosphere
+    air.sun_elevation, air.sun_azimuth, air.density = math.radians(elevation), 0.3, 0.0
+    assert bpy.ops.sandscape.add_atmosphere() == {"FINISHED"}
+    sandscape.addon.atmosphere.scene_sun(eevee_scene).hide_render = True
+    scenes.camera("ORTHO", location=(0.0, 0.0, 10.0), ortho_scale=1.0)
+    eevee_scene.cycles.samples, eevee_scene.cycles.max_bounces = 256, 1
+
+    def mean(engine):
+        eevee_scene.render.engine = engine
+        return readback.render(eevee_scene)[..., :3].astype(np.float64).mean((0, 1))
+
+    cycles, eevee = mean("CYCLES"), mean("BLENDER_EEVEE")
+    tree = eevee_scene.world.node_tree
+    tree.nodes.remove(tree.nodes["Sandscape EEVEE World Output"])
+    tree.nodes["Sandscape World Output"].target = "ALL"
+    plain = mean("BLENDER_EEVEE")
+    print(f"sky at {elevation:g}°: Cycles {cycles.round(4)}, EEVEE {eevee.round(4)} "
+          f"({(eevee / cycles - 1).round(3)}), plain sky {plain.round(4)} ({(plain / cycles - 1).round(3)})")
+    assert np.abs(eevee / cycles - 1.0).max() <= SKY_TOLERANCE
+    assert np.abs(plain / cycles - 1.0).max() > 2 * SKY_TOLERANCE
