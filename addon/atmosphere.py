@@ -18,7 +18,7 @@ from ..core import sun as sky_sun
 from ..core.clouds import layer_region as holding_region
 from ..node_groups import dust_field, dust_volume
 from ..node_groups import helper as h
-from . import drivers, evaluation, sand, sand_eevee, shot, units
+from . import compat, drivers, evaluation, sand, sand_eevee, shot, units
 from . import ownership as own
 from .sun_lamp import ensure_sun, is_ours, scene_sun  # noqa: F401 (the atmosphere's API)
 
@@ -70,7 +70,7 @@ def _eevee_sky_output(tree, lighting, ray, shown):
     up = h.add_node(tree, "ShaderNodeMath", operation="MAXIMUM", inputs={1: 0.0})
     h.link(tree, axes.outputs["Z"], up.inputs[0])
     spread = h.add_node(tree, "ShaderNodeMath", operation="MULTIPLY_ADD",
-                        inputs={1: 0.5 * air.EEVEE_BAND_ONE, 2: 0.25})
+                        inputs={1: 0.5 * compat.eevee_band_one(), 2: 0.25})
     h.link(tree, up.outputs[0], spread.inputs[0])
     weight = h.add_node(tree, "ShaderNodeMath", operation="DIVIDE", name="Sandscape EEVEE Sky Weight")
     h.link(tree, up.outputs[0], weight.inputs[0])

@@ -8,7 +8,14 @@ Each difference is detected by the feature, not by the version number, so a 5.1 
   (`modifier.properties.inputs.Socket_1.value`) and the modifier holds no ID properties at
   all, so item access raises TypeError. Writing the RNA value does not tag the object for
   re-evaluation, so the setter tags it on both versions.
+- EEVEE's world lighting damps its second spherical-harmonic band more on 5.0 than on 5.2: a
+  measured behaviour, not a feature to detect, so it goes by the version (5.1, not measured,
+  takes 5.0's).
 """
+
+import bpy
+
+from ..core import atmosphere as air
 
 
 def _input_holder(modifier, identifier):
@@ -34,3 +41,8 @@ def modifier_input(modifier, identifier):
     holder = _input_holder(modifier, identifier)
     value = modifier[identifier] if holder is None else holder.value
     return tuple(value) if hasattr(value, "__len__") and not isinstance(value, str) else value
+
+
+def eevee_band_one():
+    """EEVEE's damping of the world lighting's second band in this Blender (core.atmosphere)."""
+    return air.EEVEE_BAND_ONE[(5, 2) if bpy.app.version >= (5, 2) else (5, 0)]

@@ -72,10 +72,12 @@ def sun_direction(elevation, azimuth):
                      np.sin(elevation)])
 
 
-EEVEE_BAND_ONE = 0.86  # EEVEE's damping of the first band, from a lit upper hemisphere (tests/test_eevee.py)
+# EEVEE's damping of its second band, by Blender version: from a lit upper hemisphere, which
+# renders at (1 + b) / 2 of Cycles' light (measured as tests/test_eevee.py's sky test renders it).
+EEVEE_BAND_ONE = {(5, 0): 0.66, (5, 2): 0.86}
 
 
-def eevee_sky_weight(up, band_one=EEVEE_BAND_ONE):
+def eevee_sky_weight(up, band_one):
     """The factor on the sky's radiance in EEVEE's lighting world, by the direction's up component.
 
     EEVEE lights diffuse surfaces from the world's first two spherical-harmonic bands, where a
