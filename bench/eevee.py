@@ -148,9 +148,9 @@ def sun_table(bpy, sandscape, scene, elevations, distance, render):
             scene.render.engine = engine
             frames[key], _ = render(f"{key}-sun-{elevation:g}")
         look = sandscape.addon.sand.look_node(material)
-        sandscape.addon.sand_eevee.attach(material, scene, look, False)  # one output for both
+        sandscape.addon.sand_eevee.attach(material, scene, look, None)  # one output for both
         frames["plain"], _ = render(f"eevee-plain-sun-{elevation:g}")
-        sandscape.addon.sand_eevee.attach(material, scene, look, True)
+        sandscape.addon.sand_eevee.attach(material, scene, look, "PHYSICAL")
         balanced, plain = [], []
         for low, high in BANDS:
             band = (distance >= low) & (distance < high)

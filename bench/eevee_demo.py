@@ -86,17 +86,12 @@ def main(argv=None):
     parser.add_argument("--picture", action="store_true", help="write docs/eevee_demo.png")
     parser.add_argument("--no-append", action="store_true")
     args = parser.parse_args(argv)
-    root = session.isolate()
+    _, scene = session.demo_scene()
     import bpy
 
-    session.install_dev_extension(root)
     from devtools import readback
 
-    session.reset()
-    bpy.ops.sandscape.build_demo_scene()
-    scene = bpy.context.scene
     scene.render.resolution_x, scene.render.resolution_y = RESOLUTION
-    scene.render.resolution_percentage = 100
     scene.cycles.samples, scene.eevee.taa_render_samples = args.samples, args.samples
     out = pathlib.Path(tempfile.mkdtemp(prefix="sandscape-eevee-demo-"))
     tables, pictures = [], []

@@ -52,7 +52,7 @@ def measure():
     bpy.context.view_layer.objects.active = ground
     assert bpy.ops.sandscape.add_sand_material(ripples=False) == {"FINISHED"}
     material = ground.active_material  # measured without its EEVEE output: what the balance corrects
-    sandscape.addon.sand_eevee.attach(material, scene, sandscape.addon.sand.look_node(material), False)
+    sandscape.addon.sand_eevee.attach(material, scene, sandscape.addon.sand.look_node(material), None)
     readback.cycles_scene(scene, (24, 12), 64)
     scene.eevee.taa_render_samples = 16
     # EEVEE's Lambert diffuse of the sand's colour alone (what the EEVEE output's boost adds per

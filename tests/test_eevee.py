@@ -193,7 +193,7 @@ def test_sand_in_eevee_is_as_bright_as_in_cycles(eevee_scene, sandscape, elevati
 
     cycles, balanced = ground_mean("CYCLES"), ground_mean("BLENDER_EEVEE")
     material = ground.active_material
-    sandscape.addon.sand_eevee.attach(material, eevee_scene, sandscape.addon.sand.look_node(material), False)
+    sandscape.addon.sand_eevee.attach(material, eevee_scene, sandscape.addon.sand.look_node(material), None)
     plain = ground_mean("BLENDER_EEVEE")
     print(f"sun {elevation:g}°: EEVEE against Cycles {balanced / cycles - 1:+.1%} balanced, "
           f"{plain / cycles - 1:+.1%} without")
