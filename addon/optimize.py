@@ -35,11 +35,11 @@ def decisions(scene):
     (adaptive dicing, volume bounces, its passes) cost nothing in EEVEE and are left alone there,
     as EEVEE's passes are in Cycles."""
     cycles = not for_eevee(scene)
-    found = []
-    for check in (_empty_volumes, _empty_world_volume, _idle_adaptive_subdivision if cycles else None,
-                  _dark_glints, _idle_god_rays):
-        found.extend(check(scene) if check else ())
-    found.extend(_idle_volume_bounces(scene, found) if cycles else ())
+    checks = (_empty_volumes, _empty_world_volume, *((_idle_adaptive_subdivision,) if cycles else ()),
+              _dark_glints, _idle_god_rays)
+    found = [decision for check in checks for decision in check(scene)]
+    if cycles:
+        found.extend(_idle_volume_bounces(scene, found))
     found.extend(_unused_passes(scene, found))
     return found
 
