@@ -73,7 +73,7 @@ def sun_direction(elevation, azimuth):
 
 
 # EEVEE's damping of its second band, by Blender version: from a lit upper hemisphere, which
-# renders at (1 + b) / 2 of Cycles' light (measured as tests/test_eevee.py's sky test renders it).
+# renders at (1 + b) / 2 of Cycles' light (tests/test_eevee.py, the upper hemisphere).
 EEVEE_BAND_ONE = {(5, 0): 0.66, (5, 2): 0.86}
 
 

@@ -304,3 +304,32 @@ def test_the_sky_lights_the_ground_in_eevee_as_in_cycles(eevee_scene, sandscape,
           f"({(eevee / cycles - 1).round(3)}), plain sky {plain.round(4)} ({(plain / cycles - 1).round(3)})")
     assert np.abs(eevee / cycles - 1.0).max() <= SKY_TOLERANCE
     assert np.abs(plain / cycles - 1.0).max() > 2 * SKY_TOLERANCE
+
+
+def test_eevee_damps_the_second_band_as_the_sky_weight_assumes(eevee_scene, sandscape):
+    """A grey plane under a world lit only above the horizon: two undamped bands light it exactly
+    (pi), EEVEE's damped second band at (1 + b) / 2 of that, b the value the sky's weight uses for
+    this Blender (addon/compat.py). When written: 0.927 of Cycles on 5.2, 0.830 on 5.0."""
+    bpy.ops.mesh.primitive_plane_add(size=100)
+    bpy.context.active_object.data.materials.append(scenes.single_node_material(
+        "Grey", "ShaderNodeBsdfDiffuse", Color=(0.5, 0.5, 0.5, 1.0)))
+    world = bpy.data.worlds.new("Upper Hemisphere")
+    eevee_scene.world = world
+    tree = world.node_tree
+    direction, axes = tree.nodes.new("ShaderNodeTexCoord"), tree.nodes.new("ShaderNodeSeparateXYZ")
+    above = tree.nodes.new("ShaderNodeMath")
+    above.operation, above.inputs[1].default_value = "GREATER_THAN", 0.0
+    tree.links.new(direction.outputs["Generated"], axes.inputs[0])
+    tree.links.new(axes.outputs["Z"], above.inputs[0])
+    tree.links.new(above.outputs[0], tree.nodes["Background"].inputs["Color"])
+    scenes.camera("ORTHO", location=(0.0, 0.0, 10.0), ortho_scale=1.0)
+    eevee_scene.cycles.samples, eevee_scene.cycles.max_bounces = 256, 1
+
+    def mean(engine):
+        eevee_scene.render.engine = engine
+        return readback.render(eevee_scene)[..., :3].astype(np.float64).mean()
+
+    ratio = mean("BLENDER_EEVEE") / mean("CYCLES")
+    band = sandscape.addon.compat.eevee_band_one()
+    print(f"upper hemisphere: EEVEE {ratio:.3f} of Cycles, (1 + b) / 2 = {(1 + band) / 2:.3f}")
+    assert ratio == pytest.approx((1.0 + band) / 2.0, abs=0.02)
