@@ -18,13 +18,13 @@ from ..core import sun as sky_sun
 from ..core.clouds import layer_region as holding_region
 from ..node_groups import dust_field, dust_volume
 from ..node_groups import helper as h
-from . import compat, drivers, evaluation, sand, sand_eevee, shot, units
+from . import drivers, evaluation, sand, sand_eevee, shot, sky_eevee, units
 from . import ownership as own
 from .sun_lamp import ensure_sun, is_ours, scene_sun  # noqa: F401 (the atmosphere's API)
 
 # Bump when build_sky_nodes changes: a world built by an older version is rebuilt.
 WORLD_NODES_KEY = "sandscape_sky_nodes"
-WORLD_NODES_VERSION = 3
+WORLD_NODES_VERSION = 4
 CLEAR = 0.01  # the haze may end where less than 1 % of the light behind it gets through
 MAX_REACH_M = 20000.0  # thin air would otherwise ask for a box hundreds of kilometres wide
 DEFAULT_WORLD_GREYS = (0.0508761, 0.05)  # a new file's world colour and a new world's, linear
@@ -34,9 +34,8 @@ def build_sky_nodes(tree):
     """Sky light without a sun disc for every ray but camera rays, which see the disc as well.
 
     The lamp lights the scene; a disc in the lighting sky would light it twice, yet without
-    one the camera would see no sun at all. EEVEE gets its own output: the same sky for the
-    camera, and for the lighting the sky weighted by direction (core.atmosphere.eevee_sky_weight)
-    so that its spherical-harmonic lighting of the ground matches the sky Cycles integrates.
+    one the camera would see no sun at all. EEVEE gets its own output (sky_eevee.py): the same
+    sky for the camera, and a lighting sky shaped for its spherical-harmonic lighting.
     """
     tree.nodes.clear()
     lighting = h.add_node(tree, "ShaderNodeTexSky", name="Sandscape Sky", label="Sky",
@@ -56,36 +55,8 @@ def build_sky_nodes(tree):
     h.link(tree, shown.outputs[0], mix.inputs[2])
     h.link(tree, mix.outputs[0], output.inputs["Surface"])
     output.target = "CYCLES"
-    _eevee_sky_output(tree, lighting, ray, shown)
+    sky_eevee.build(tree, ray, shown)
     h.arrange(tree, set_widths=False)
-
-
-def _eevee_sky_output(tree, lighting, ray, shown):
-    """The world output EEVEE renders: the sky for camera rays, the weighted sky for lighting."""
-    direction = h.add_node(tree, "ShaderNodeTexCoord", name="Sandscape EEVEE Sky Direction")
-    unit = h.add_node(tree, "ShaderNodeVectorMath", operation="NORMALIZE")
-    h.link(tree, direction.outputs["Generated"], unit.inputs[0])
-    axes = h.add_node(tree, "ShaderNodeSeparateXYZ")
-    h.link(tree, unit.outputs[0], axes.inputs[0])
-    up = h.add_node(tree, "ShaderNodeMath", operation="MAXIMUM", inputs={1: 0.0})
-    h.link(tree, axes.outputs["Z"], up.inputs[0])
-    spread = h.add_node(tree, "ShaderNodeMath", operation="MULTIPLY_ADD",
-                        inputs={1: 0.5 * compat.eevee_band_one(), 2: 0.25})
-    h.link(tree, up.outputs[0], spread.inputs[0])
-    weight = h.add_node(tree, "ShaderNodeMath", operation="DIVIDE", name="Sandscape EEVEE Sky Weight")
-    h.link(tree, up.outputs[0], weight.inputs[0])
-    h.link(tree, spread.outputs[0], weight.inputs[1])
-    weighted = h.add_node(tree, "ShaderNodeVectorMath", operation="SCALE")
-    h.link(tree, lighting.outputs["Color"], weighted.inputs[0])
-    h.link(tree, weight.outputs[0], weighted.inputs["Scale"])
-    lit = h.add_node(tree, "ShaderNodeBackground", name="Sandscape EEVEE Sky Light")
-    h.link(tree, weighted.outputs[0], lit.inputs["Color"])
-    mix = h.add_node(tree, "ShaderNodeMixShader", name="Sandscape EEVEE Camera Sees the Disc")
-    h.link(tree, ray.outputs["Is Camera Ray"], mix.inputs["Fac"])
-    h.link(tree, lit.outputs[0], mix.inputs[1])
-    h.link(tree, shown.outputs[0], mix.inputs[2])
-    output = h.add_node(tree, "ShaderNodeOutputWorld", name="Sandscape EEVEE World Output", target="EEVEE")
-    h.link(tree, mix.outputs[0], output.inputs["Surface"])
 
 
 def is_untouched_default(world):
@@ -129,6 +100,9 @@ def ensure_sky(scene, elevation, azimuth, replace_theirs=False, follow=None):
     if world.get(WORLD_NODES_KEY) != WORLD_NODES_VERSION:
         build_sky_nodes(world.node_tree)
         world[WORLD_NODES_KEY] = WORLD_NODES_VERSION
+        # EEVEE would turn the lit ground's light (brighter than its threshold) into a sun
+        # shining up from below, which the ground shadows: our sky has the lamp for a sun.
+        world.sun_threshold = 0.0
     for sky in (n for n in world.node_tree.nodes if n.bl_idname == "ShaderNodeTexSky"):
         for name in ("sun_elevation", "sun_rotation"):
             sky.driver_remove(name)
@@ -160,7 +134,8 @@ def followed_sun(sky):
 
 def follow_scene_sun(scene):
     """Point our sky at the artist's sun where it is another now (theirs deleted and a new one
-    added, or ours replaced by theirs); True when the sky's drivers changed."""
+    added, or ours replaced by theirs), and EEVEE's ground light at the scene's sun; True when
+    the sky's drivers changed."""
     world = own.scene_world(scene)
     if world is None or world.node_tree is None:
         return False
@@ -168,9 +143,11 @@ def follow_scene_sun(scene):
     if not skies:
         return False
     sun = scene_sun(scene)
+    changed = sky_eevee.followed_sun(world) != sun
+    if changed:  # the ground's light in EEVEE follows our lamp too
+        sky_eevee.follow_sun(world, sun)
     if sun is None or is_ours(sun):
-        return False
-    changed = False
+        return changed
     for sky in skies:
         if followed_sun(sky) != sun:
             _follow(sky, sun)
@@ -364,6 +341,10 @@ def apply(scene, settings):
     box = ensure_volume(scene, coefficients, low, high, dust)
     sand.set_wind(scene, settings.wind)  # one wind for the dust and the sand's ripples
     sand_eevee.follow_scene_sun(scene)
+    sky_eevee.follow_sun(world, sun)
+    sky_eevee.follow_clamp(world, scene)
+    if sky_eevee.followed_sand(world) is None:  # sand added before the sky: the ground takes its colour
+        sky_eevee.follow_sand(world, next(filter(None, map(sand.find_sand_material, scene.objects)), None))
     # Volume sampling, like the exposure, is the artist's: the quality presets set it.
     return {"sun": sun, "followed": followed, "elevation": elevation, "azimuth": azimuth, "world": world,
             "volume": box, "coefficients": per_metre, "exposure": exposure, "changes": changes}

@@ -43,6 +43,6 @@ def modifier_input(modifier, identifier):
     return tuple(value) if hasattr(value, "__len__") and not isinstance(value, str) else value
 
 
-def eevee_band_one():
-    """EEVEE's damping of the world lighting's second band in this Blender (core.atmosphere)."""
-    return air.EEVEE_BAND_ONE[(5, 2) if bpy.app.version >= (5, 2) else (5, 0)]
+def eevee_dering_limit():
+    """The contrast EEVEE's world lighting keeps before deringing, in this Blender (core.atmosphere)."""
+    return air.EEVEE_DERING_LIMIT[(5, 2) if bpy.app.version >= (5, 2) else (5, 0)]

@@ -84,6 +84,7 @@ def build(context):
     scene.render.engine = "CYCLES"  # the demo's presets and post effects are measured in Cycles
     # Its denoising comes with the post effects below, once there is a camera and a sun.
     presets.apply(scene, {k: v for k, v in presets.PRESETS["PREVIEW"].items() if k != presets.DENOISE})
+    presets.apply_eevee(scene, presets.EEVEE_PRESETS["PREVIEW"])  # for an artist who switches to EEVEE
     scene.sandscape_atmosphere.wind = WIND
     progress = Progress("Sandscape demo")
     terrain = dunes.build(scene, DUNES, progress)["field"]

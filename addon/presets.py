@@ -50,9 +50,12 @@ PRESETS = {"DRAFT": _preset(16, 16), "PREVIEW": _preset(72, 64),
 # render samples (EEVEE's anti-aliasing, soft shadows and volume jitter all converge with them)
 # and the volume froxels' size in pixels. The finest froxels (2 px) cost the demo little time and
 # lowered its error at every sample count measured, so every preset has them.
-EEVEE_PRESETS = {"DRAFT": {"taa_render_samples": 16, "volumetric_tile_size": "2"},
-                 "PREVIEW": {"taa_render_samples": 64, "volumetric_tile_size": "2"},
-                 "FINAL": {"taa_render_samples": 128, "volumetric_tile_size": "2"}}
+# Clamp Surface Indirect off: at EEVEE's 10 the world's light is scaled down whenever lit sand
+# (our world's light from below, addon/sky_eevee.py) is brighter than that.
+_EEVEE_COMMON = {"volumetric_tile_size": "2", "clamp_surface_indirect": 0.0}
+EEVEE_PRESETS = {"DRAFT": {"taa_render_samples": 16, **_EEVEE_COMMON},
+                 "PREVIEW": {"taa_render_samples": 64, **_EEVEE_COMMON},
+                 "FINAL": {"taa_render_samples": 128, **_EEVEE_COMMON}}
 
 
 def apply_eevee(scene, settings):

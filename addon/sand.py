@@ -26,7 +26,7 @@ from ..node_groups import (
     sand_normal,
 )
 from ..node_groups import helper as h
-from . import evaluation, print_lookup, sand_eevee, sparkle_footprint, units
+from . import evaluation, print_lookup, sand_eevee, sky_eevee, sparkle_footprint, units
 from . import ownership as own
 
 SAND_COLOR = core_sand.SAND_COLOR
@@ -202,8 +202,9 @@ def update_material(material, values, image=None, look="PHYSICAL", glint_mode="L
             if name in ripple_values:
                 wave.inputs[name].default_value = ripple_values[name]
         _ripple_displacement(material, bool(ripple_values.get("Displacement")))
-    sand_eevee.attach(material, scene if scene is not None else bpy.context.scene, look_node(material),
-                      look, node)
+    scene = scene if scene is not None else bpy.context.scene
+    sand_eevee.attach(material, scene, look_node(material), look, node)
+    sky_eevee.follow_sand(own.scene_world(scene), material)  # the lit sand EEVEE's world bounces
     return node
 
 

@@ -72,19 +72,40 @@ def sun_direction(elevation, azimuth):
                      np.sin(elevation)])
 
 
-# EEVEE's damping of its second band, by Blender version: from a lit upper hemisphere, which
-# renders at (1 + b) / 2 of Cycles' light (tests/test_eevee.py, the upper hemisphere).
-EEVEE_BAND_ONE = {(5, 0): 0.66, (5, 2): 0.86}
+# EEVEE lights diffuse surfaces from the world's first two spherical-harmonic bands, and before
+# that "derings" them: where the second band's largest axis exceeds this share of the first (in
+# irradiance: (R1 . n) / R0 for a normal n), every channel's second band is scaled down to it.
+# 5.0's is 2/3 (its source); 5.2's was measured (tests/test_eevee.py, worlds lit by two hemispheres).
+EEVEE_DERING_LIMIT = {(5, 0): 2.0 / 3.0, (5, 2): 0.86}
+EEVEE_DERING_MARGIN = 0.98  # our worlds keep this far inside the limit, so EEVEE leaves them as they are
 
 
-def eevee_sky_weight(up, band_one):
-    """The factor on the sky's radiance in EEVEE's lighting world, by the direction's up component.
+def eevee_world_irradiance(above, below, normal_z, limit):
+    """Irradiance EEVEE gives a normal with up component normal_z under a world of two uniform
+    hemispheres whose irradiance on level ground from above and from below is `above` and
+    `below` (R, G, B), its clamp off: the first band (above + below)/2, the second (above -
+    below)/2 along z, derung as EEVEE does (one factor for every channel)."""
+    above, below = np.asarray(above, np.float64), np.asarray(below, np.float64)
+    mean, tilt = (above + below) / 2, (above - below) / 2
+    share = np.abs(tilt) / np.maximum(mean, 1e-12)
+    factor = min(1.0, limit / max(float(share.max()), 1e-12))
+    return np.maximum(mean + factor * tilt * normal_z, 0.0)
 
-    EEVEE lights diffuse surfaces from the world's first two spherical-harmonic bands, where a
-    direction d reaches a normal n with weight 1/4 + b (d.n)/2 (per unit of radiance, over pi; b
-    its damping of the second band) instead of max(0, d.n). A low sun's bright, warm sky near the
-    horizon then lights flat sand three times over. Weighted by max(0, d_z) / (1/4 + b d_z/2), the
-    sky lights an upward normal as the true integral does, for any sky; below the horizon, nothing.
-    """
-    up = np.maximum(np.asarray(up, np.float64), 0.0)
-    return up / (0.25 + 0.5 * band_one * up)
+
+def eevee_world_hemispheres(sky, ground, limit):
+    """The irradiance from above and from below (R, G, B) that EEVEE's lighting world holds, as
+    two uniform hemispheres: from above the sky's on level ground, so level sand gets exactly the
+    sky's light; from below the lit ground's (pi times its radiance), which lights a walker's legs
+    and the undersides of things as the sand does in Cycles. The ground is held within the
+    contrast EEVEE keeps without deringing (limit: EEVEE_DERING_LIMIT), so that the sky stays
+    exact: a ground far brighter than the sky is dimmed, one far darker brightened."""
+    sky, ground = np.asarray(sky, np.float64), np.asarray(ground, np.float64)
+    ratio = (1 + limit * EEVEE_DERING_MARGIN) / (1 - limit * EEVEE_DERING_MARGIN)
+    return sky, np.clip(ground, sky / ratio, sky * ratio)
+
+
+def ground_radiance(direct, sky, albedo):
+    """Radiance of level Lambertian ground, (R, G, B), under direct and sky irradiance on it."""
+    irradiance = np.asarray(direct, np.float64) + np.asarray(sky, np.float64)
+    return np.asarray(albedo, np.float64)[:3] * irradiance / np.pi
+

@@ -30,6 +30,11 @@ def sky_irradiance(elevation):
     return _interpolate(elevation, _SKY)
 
 
+def sky_rows():
+    """The table's (elevations in degrees, sky irradiance on level ground (R, G, B) per row)."""
+    return _DEGREES.copy(), _SKY.copy()
+
+
 def lamp(elevation):
     """(strength, colour) of a sun lamp that lights like the sky's sun: colour's largest channel 1."""
     rgb = disc_irradiance(elevation)

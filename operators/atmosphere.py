@@ -53,6 +53,10 @@ def report_line(scene, settings, done):
             scene.view_settings.exposure - done["exposure"]) > 0.5:
         parts.append(f"exposure kept at {scene.view_settings.exposure:+.2f} (Set Exposure would make it "
                      f"{done['exposure']:+.2f} for this sky)")
+    if done["world"] is not None and scene.render.engine == "BLENDER_EEVEE" and \
+            scene.eevee.clamp_surface_indirect > 0:
+        parts.append(f"EEVEE's Clamp Surface Indirect kept at {scene.eevee.clamp_surface_indirect:g} "
+                     "(it dims the sand's bounce light; the EEVEE presets set 0)")
     changed = "; changed: " + "; ".join(done["changes"]) if done["changes"] else ""
     return ", ".join(parts) + changed
 

@@ -97,13 +97,16 @@ def test_the_sky_follows_a_sun_your_keys_move_and_aiming_leaves_it_alone():
         scene.frame_set(frame)
         elevation, azimuth = direction(sun)
         assert sky_sun_degrees(scene) == {(round(elevation, 3), round(azimuth, 3))}, frame
+        eevee_sun = scene.world.node_tree.nodes["Sandscape EEVEE Ground Sun"]  # EEVEE's light from below
+        assert eevee_sun.inputs[2].default_value == pytest.approx(math.sin(math.radians(elevation)), abs=1e-5)
     scene.frame_set(1)
     scene.sandscape_atmosphere.aim_sun = True
     before = sun.matrix_world.copy()
     _, reports = operators.run_execute("sandscape.add_atmosphere")
     assert sun.matrix_world == before and "so Aim Your Sun leaves it" in info_line(reports)
     drivers = scene.world.node_tree.animation_data.drivers
-    assert len(drivers) == 4 and all(d.driver.is_simple_expression for d in drivers)
+    assert all(d.driver.is_simple_expression for d in drivers)
+    assert len([d for d in drivers if "Sandscape EEVEE" not in d.data_path]) == 4  # the sky's sun
 
 
 def test_the_sky_and_the_rays_follow_a_sun_you_swap_in(sandscape):
@@ -123,7 +126,9 @@ def test_the_sky_and_the_rays_follow_a_sun_you_swap_in(sandscape):
     elevation, azimuth = direction(second)
     assert sky_sun_degrees(scene) == {(round(elevation, 3), round(azimuth, 3))}
     assert sandscape.addon.sun_screen.driven_sun(scene.compositing_node_group) == second
-    drivers = scene.world.node_tree.animation_data.drivers
+    drivers = [d for d in scene.world.node_tree.animation_data.drivers
+               if "Sandscape EEVEE Clamp" not in d.data_path]  # that one reads the scene's clamp
+    assert len(drivers) == 10  # the sky's sun (4), EEVEE's ground light (3 axes, 3 channels)
     assert all(d.driver.is_valid and d.driver.variables[0].targets[0].id == second for d in drivers)
 
 

@@ -1,0 +1,205 @@
+"""The sky world's output for EEVEE: the sky the camera sees, and a lighting world made for EEVEE.
+
+EEVEE lights diffuse surfaces from the world's first two spherical-harmonic bands, derung, and
+clamped by the scene's Clamp Surface Indirect. Its lighting world is therefore two uniform
+hemispheres (core.atmosphere.eevee_world_hemispheres): above, the sky's irradiance on level
+ground, so level sand gets the sky's light as in Cycles; below, the lit sand's, which lights a
+walker's legs and the undersides of things as the sand's bounce does in Cycles (EEVEE bounces
+none without a baked probe).
+
+Both follow the scene's sun lamp through simple-expression drivers (its axis, strength and
+colour), with the sky's irradiance at that elevation from core/sun_table.py in an RGB Curves
+node, and the ground takes the colour of the sand last added or updated: no Python on a farm.
+"""
+
+import math
+
+import numpy as np
+
+from ..core import atmosphere as air
+from ..core import sand as core_sand
+from ..core import sun as sky_sun
+from ..node_groups import helper as h
+from . import compat, drivers
+from . import ownership as own
+
+OUTPUT = "Sandscape EEVEE World Output"
+SUN, SUN_LIGHT = "Sandscape EEVEE Ground Sun", "Sandscape EEVEE Ground Sun Light"
+SKY_LIGHT, GROUND_COLOR = "Sandscape EEVEE Ground Sky Light", "Sandscape EEVEE Ground Colour"
+SUN_EXPRESSIONS = ("sa", "sb", "sc")  # the lamp's world +Z: towards the sun
+LIGHT_EXPRESSION = "energy * tint * (1 - hidden)"  # a lamp hidden from renders lights no sand
+CLAMP = "Sandscape EEVEE Clamp"
+CLAMP_EXPRESSION = "limit if limit > 0 else 1e9"  # 0: EEVEE clamps nothing
+LOOK = "Sandscape Look"  # the sand material's look node (addon/sand.py), whose Color the ground takes
+
+
+def build(tree, ray, shown):
+    """The world output EEVEE renders: the sky for camera rays; for lighting the two hemispheres."""
+    direction = h.add_node(tree, "ShaderNodeTexCoord", name="Sandscape EEVEE Sky Direction")
+    axes = h.add_node(tree, "ShaderNodeSeparateXYZ")
+    h.link(tree, direction.outputs["Generated"], axes.inputs[0])
+    above = h.math(tree, "GREATER_THAN", axes.outputs["Z"], 0.0, label="Above the Horizon")
+    sky, ground = _level_light(tree)
+    # The ground held within the contrast EEVEE keeps without deringing (the sky stays exact).
+    limit = compat.eevee_dering_limit() * air.EEVEE_DERING_MARGIN
+    ratio = (1 + limit) / (1 - limit)
+    floor = h.add_node(tree, "ShaderNodeVectorMath", operation="SCALE", inputs={"Scale": 1 / ratio})
+    ceiling = h.add_node(tree, "ShaderNodeVectorMath", operation="SCALE", inputs={"Scale": ratio})
+    h.link(tree, sky, floor.inputs[0])
+    h.link(tree, sky, ceiling.inputs[0])
+    raised = h.add_node(tree, "ShaderNodeVectorMath", operation="MAXIMUM")
+    h.link(tree, ground, raised.inputs[0])
+    h.link(tree, floor.outputs[0], raised.inputs[1])
+    held = h.add_node(tree, "ShaderNodeVectorMath", operation="MINIMUM")
+    h.link(tree, raised.outputs[0], held.inputs[0])
+    h.link(tree, ceiling.outputs[0], held.inputs[1])
+    # EEVEE scales the whole world's light down where its brightest direction passes the scene's
+    # Clamp Surface Indirect: the ground, not the sky, gives way (1.25 below - 0.25 above <= pi C).
+    clamp = h.math(tree, "MULTIPLY", 0.0, math.pi / 1.25, label="Clamp Surface Indirect (driven) × π / 1.25")
+    clamp.name = CLAMP
+    cap = h.add_node(tree, "ShaderNodeVectorMath", operation="MULTIPLY_ADD", inputs={1: (0.2, 0.2, 0.2)})
+    h.link(tree, sky, cap.inputs[0])
+    h.link(tree, clamp.outputs[0], cap.inputs[2])
+    below = h.add_node(tree, "ShaderNodeVectorMath", operation="MINIMUM",
+                       name="Sandscape EEVEE Light from Below")
+    h.link(tree, held.outputs[0], below.inputs[0])
+    h.link(tree, cap.outputs[0], below.inputs[1])
+    hemispheres = h.add_node(tree, "ShaderNodeMix", name="Sandscape EEVEE Two Hemispheres", data_type="RGBA")
+    h.link(tree, above.outputs[0], hemispheres.inputs["Factor"])
+    h.link(tree, below.outputs[0], h.socket(hemispheres.inputs, "A"))
+    h.link(tree, sky, h.socket(hemispheres.inputs, "B"))
+    lit = h.add_node(tree, "ShaderNodeBackground", name="Sandscape EEVEE Sky Light",
+                     inputs={"Strength": 1 / math.pi})  # irradiance on level ground: radiance x pi
+    h.link(tree, h.socket(hemispheres.outputs, "Result"), lit.inputs["Color"])
+    mix = h.add_node(tree, "ShaderNodeMixShader", name="Sandscape EEVEE Camera Sees the Disc")
+    h.link(tree, ray.outputs["Is Camera Ray"], mix.inputs["Fac"])
+    h.link(tree, lit.outputs[0], mix.inputs[1])
+    h.link(tree, shown.outputs[0], mix.inputs[2])
+    output = h.add_node(tree, "ShaderNodeOutputWorld", name=OUTPUT, target="EEVEE")
+    h.link(tree, mix.outputs[0], output.inputs["Surface"])
+
+
+def _level_light(tree):
+    """(sky, ground): colour sockets of the sky's irradiance on level sand and of the lit sand's
+    radiance times pi (its colour times the sun's and the sky's irradiance on it)."""
+    sun = h.add_node(tree, "ShaderNodeCombineXYZ", name=SUN, label="Sun Direction (driven)")
+    sun_unit = h.add_node(tree, "ShaderNodeVectorMath", operation="NORMALIZE")
+    h.link(tree, sun.outputs[0], sun_unit.inputs[0])
+    sun_axes = h.add_node(tree, "ShaderNodeSeparateXYZ")
+    h.link(tree, sun_unit.outputs[0], sun_axes.inputs[0])
+    height = h.math(tree, "MAXIMUM", sun_axes.outputs["Z"], 0.0, label="Sine of the Sun's Elevation")
+    light = h.add_node(tree, "ShaderNodeCombineColor", name=SUN_LIGHT, label="Sun Strength × Colour (driven)")
+    direct = h.add_node(tree, "ShaderNodeVectorMath", operation="SCALE", label="Sun on Level Sand")
+    h.link(tree, light.outputs[0], direct.inputs[0])
+    h.link(tree, height.outputs[0], direct.inputs["Scale"])
+    sky = _sky_irradiance(tree, height.outputs[0])
+    level = h.add_node(tree, "ShaderNodeVectorMath", operation="ADD", label="Light on Level Sand")
+    h.link(tree, direct.outputs[0], level.inputs[0])
+    h.link(tree, sky, level.inputs[1])
+    # Combine Color: a driver on each channel's input, as for the sun's light.
+    color = h.add_node(tree, "ShaderNodeCombineColor", name=GROUND_COLOR, label="Ground Colour")
+    set_ground_colour(color, core_sand.SAND_COLOR)
+    ground = h.add_node(tree, "ShaderNodeVectorMath", operation="MULTIPLY", label="Ground Radiance × π")
+    h.link(tree, level.outputs[0], ground.inputs[0])
+    h.link(tree, color.outputs[0], ground.inputs[1])
+    return sky, ground.outputs[0]
+
+
+def _sky_irradiance(tree, height):
+    """The sky's irradiance on level ground by the sine of the sun's elevation (the sky model's
+    table, linear between its rows), through an RGB Curves node per channel."""
+    degrees, columns = sky_sun.sky_rows()
+    rows = degrees >= 0
+    sines, columns = np.sin(np.radians(degrees[rows])), columns[rows]
+    peaks = columns.max(axis=0)
+    curves = h.add_node(tree, "ShaderNodeRGBCurve", name=SKY_LIGHT, label="Sky on Level Sand ÷ Its Peak")
+    for channel in range(3):
+        curve = curves.mapping.curves[channel]
+        while len(curve.points) > 2:
+            curve.points.remove(curve.points[-1])
+        values = columns[:, channel] / peaks[channel]
+        curve.points[0].location = (float(sines[0]), float(values[0]))
+        curve.points[1].location = (float(sines[-1]), float(values[-1]))
+        for sine, value in zip(sines[1:-1], values[1:-1], strict=True):
+            curve.points.new(float(sine), float(value))
+        for point in curve.points:
+            point.handle_type = "VECTOR"
+    curves.mapping.update()
+    grey = h.add_node(tree, "ShaderNodeCombineColor")
+    for index in range(3):
+        h.link(tree, height, grey.inputs[index])
+    h.link(tree, grey.outputs[0], curves.inputs["Color"])
+    curves.inputs["Fac"].default_value = 1.0
+    scaled = h.add_node(tree, "ShaderNodeVectorMath", operation="MULTIPLY", label="× Peak")
+    h.link(tree, curves.outputs[0], scaled.inputs[0])
+    scaled.inputs[1].default_value = tuple(float(p) for p in peaks)
+    return scaled.outputs[0]
+
+
+def follow_sun(world, sun):
+    """Drive the ground's light from this sun lamp (None: no sun, no ground light)."""
+    tree = world.node_tree if world is not None else None
+    direction, light = own.node(tree, SUN), own.node(tree, SUN_LIGHT)
+    if direction is None or light is None:
+        return
+    for index in range(3):
+        for socket, expression, variables in (
+                (direction.inputs[index], SUN_EXPRESSIONS[index], drivers.lamp_axis(sun) if sun else None),
+                (light.inputs[index], LIGHT_EXPRESSION,
+                 [("energy", "OBJECT", sun, "data.energy"), ("tint", "OBJECT", sun, f"data.color[{index}]"),
+                  ("hidden", "OBJECT", sun, "hide_render")]
+                 if sun else None)):
+            if variables is None:
+                socket.driver_remove("default_value")
+                socket.default_value = 0.0
+            else:
+                drivers.drive(socket, "default_value", expression, variables)
+
+
+def follow_clamp(world, scene):
+    """Drive the ground's cap from this scene's EEVEE Clamp Surface Indirect."""
+    node = own.node(world.node_tree if world is not None else None, CLAMP)
+    if node is not None:
+        drivers.drive(node.inputs[0], "default_value", CLAMP_EXPRESSION,
+                      [("limit", "SCENE", scene, "eevee.clamp_surface_indirect")])
+
+
+def followed_sun(world):
+    """The lamp the ground's light follows, or None."""
+    tree = world.node_tree if world is not None else None
+    if own.node(tree, SUN) is None or tree.animation_data is None:
+        return None
+    path = f'nodes["{SUN}"].inputs[0].default_value'
+    driver = next((c.driver for c in tree.animation_data.drivers if c.data_path == path), None)
+    return driver.variables[0].targets[0].id if driver is not None and driver.variables else None
+
+
+def set_ground_colour(node, colour):
+    for index in range(3):
+        node.inputs[index].driver_remove("default_value")
+        node.inputs[index].default_value = colour[index]
+
+
+def follow_sand(world, material):
+    """Drive the ground's colour from this sand material's look (its Color); the default sand's
+    where there is none or its colour is linked (a texture the world cannot read)."""
+    node = own.node(world.node_tree if world is not None else None, GROUND_COLOR)
+    if node is None:
+        return
+    look = material.node_tree.nodes.get(LOOK) if material is not None and material.node_tree else None
+    if look is None or "Color" not in look.inputs or look.inputs["Color"].is_linked:
+        set_ground_colour(node, core_sand.SAND_COLOR)
+        return
+    for index in range(3):
+        path = f'node_tree.nodes["{LOOK}"].inputs["Color"].default_value[{index}]'
+        drivers.drive(node.inputs[index], "default_value", "colour", [("colour", "MATERIAL", material, path)])
+
+
+def followed_sand(world):
+    """The sand material whose colour the ground takes, or None."""
+    tree = world.node_tree if world is not None else None
+    if own.node(tree, GROUND_COLOR) is None or tree.animation_data is None:
+        return None
+    path = f'nodes["{GROUND_COLOR}"].inputs[0].default_value'
+    driver = next((c.driver for c in tree.animation_data.drivers if c.data_path == path), None)
+    return driver.variables[0].targets[0].id if driver is not None and driver.variables else None
