@@ -137,7 +137,7 @@ def follow_scene_sun(scene):
     added, or ours replaced by theirs), and EEVEE's ground light at the scene's sun; True when
     the sky's drivers changed."""
     world = own.scene_world(scene)
-    if world is None or world.node_tree is None:
+    if world is None or world.node_tree is None or world.library is not None:  # linked: not ours to edit
         return False
     skies = [n for n in world.node_tree.nodes if n.bl_idname == "ShaderNodeTexSky"]
     if not skies:

@@ -164,17 +164,23 @@ def follow_clamp(world, scene):
                       [("limit", "SCENE", scene, "eevee.clamp_surface_indirect")])
 
 
-def followed_sun(world):
-    """The lamp the ground's light follows, or None."""
+def _driven_by(world, name):
+    """The ID the first driver on this node's first input reads, or None."""
     tree = world.node_tree if world is not None else None
-    if own.node(tree, SUN) is None or tree.animation_data is None:
+    if own.node(tree, name) is None or tree.animation_data is None:
         return None
-    path = f'nodes["{SUN}"].inputs[0].default_value'
+    path = f'nodes["{name}"].inputs[0].default_value'
     driver = next((c.driver for c in tree.animation_data.drivers if c.data_path == path), None)
     return driver.variables[0].targets[0].id if driver is not None and driver.variables else None
 
 
+def followed_sun(world):
+    """The lamp the ground's light follows, or None."""
+    return _driven_by(world, SUN)
+
+
 def set_ground_colour(node, colour):
+    """The ground's colour fixed (its drivers removed)."""
     for index in range(3):
         node.inputs[index].driver_remove("default_value")
         node.inputs[index].default_value = colour[index]
@@ -197,9 +203,4 @@ def follow_sand(world, material):
 
 def followed_sand(world):
     """The sand material whose colour the ground takes, or None."""
-    tree = world.node_tree if world is not None else None
-    if own.node(tree, GROUND_COLOR) is None or tree.animation_data is None:
-        return None
-    path = f'nodes["{GROUND_COLOR}"].inputs[0].default_value'
-    driver = next((c.driver for c in tree.animation_data.drivers if c.data_path == path), None)
-    return driver.variables[0].targets[0].id if driver is not None and driver.variables else None
+    return _driven_by(world, GROUND_COLOR)
