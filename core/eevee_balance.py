@@ -27,9 +27,9 @@ DEGREE = 3
 # exp(sum c v^i l^j a^k) over the terms (i, j, k), total degree at most DEGREE.
 TERMS = tuple(t for t in itertools.product(range(DEGREE + 1), repeat=3) if sum(t) <= DEGREE)
 # Fitted to devtools/eevee_balance.json (devtools/eevee_balance_data.py, Blender 5.2.3), under the
-# sky's EEVEE lighting output.
-COEFFICIENTS = (1.4786, -0.0111, 0.5601, -0.0111, -3.2836, -1.0046, -0.435, 0.2459, 0.9948, 0.912,
-                -3.2934, -0.5449, -0.3263, 7.0841, -0.0141, -2.2435, 0.9802, 0.674, -2.1993, 0.318)
+# EEVEE world's two hemispheres (addon/sky_eevee.py).
+COEFFICIENTS = (1.476, -0.0089, 0.5696, -0.0089, -3.32, -1.0063, -0.444, 0.3194, 0.9914, 0.875,
+                -3.2935, -0.5392, -0.3292, 7.0994, -0.0121, -2.2565, 0.9783, 0.666, -2.1906, 0.3124)
 
 
 def _unit(vector):
