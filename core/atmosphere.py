@@ -80,28 +80,36 @@ EEVEE_DERING_LIMIT = {(5, 0): 2.0 / 3.0, (5, 2): 0.86}
 EEVEE_DERING_MARGIN = 0.98  # our worlds keep this far inside the limit, so EEVEE leaves them as they are
 
 
-def eevee_world_irradiance(above, below, normal_z, limit):
+def eevee_world_irradiance(above, below, normal_z, limit, clamp=0.0):
     """Irradiance EEVEE gives a normal with up component normal_z under a world of two uniform
     hemispheres whose irradiance on level ground from above and from below is `above` and
-    `below` (R, G, B), its clamp off: the first band (above + below)/2, the second (above -
-    below)/2 along z, derung as EEVEE does (one factor for every channel)."""
+    `below` (R, G, B): the first band (above + below)/2, the second (above - below)/2 along z,
+    derung as EEVEE does (one factor for every channel), then all scaled down where the bands'
+    brightest radiance, mean + 1.5 |tilt| over pi, passes the scene's Clamp Surface Indirect
+    (0: off)."""
     above, below = np.asarray(above, np.float64), np.asarray(below, np.float64)
     mean, tilt = (above + below) / 2, (above - below) / 2
     share = np.abs(tilt) / np.maximum(mean, 1e-12)
-    factor = min(1.0, limit / max(float(share.max()), 1e-12))
-    return np.maximum(mean + factor * tilt * normal_z, 0.0)
+    tilt = tilt * min(1.0, limit / max(float(share.max()), 1e-12))
+    brightest = float(np.max(mean + 1.5 * np.abs(tilt))) / np.pi
+    scale = min(1.0, clamp / brightest) if clamp > 0 and brightest > 0 else 1.0
+    return np.maximum(mean + tilt * normal_z, 0.0) * scale
 
 
-def eevee_world_hemispheres(sky, ground, limit):
+def eevee_world_hemispheres(sky, ground, limit, clamp=0.0):
     """The irradiance from above and from below (R, G, B) that EEVEE's lighting world holds, as
     two uniform hemispheres: from above the sky's on level ground, so level sand gets exactly the
     sky's light; from below the lit ground's (pi times its radiance), which lights a walker's legs
     and the undersides of things as the sand does in Cycles. The ground is held within the
     contrast EEVEE keeps without deringing (limit: EEVEE_DERING_LIMIT), so that the sky stays
-    exact: a ground far brighter than the sky is dimmed, one far darker brightened."""
+    exact: a ground far brighter than the sky is dimmed, one far darker brightened; and below
+    the scene's Clamp Surface Indirect (0: off), where the ground gives way, not the sky."""
     sky, ground = np.asarray(sky, np.float64), np.asarray(ground, np.float64)
     ratio = (1 + limit * EEVEE_DERING_MARGIN) / (1 - limit * EEVEE_DERING_MARGIN)
-    return sky, np.clip(ground, sky / ratio, sky * ratio)
+    below = np.clip(ground, sky / ratio, sky * ratio)
+    if clamp > 0:  # the bands' brightest radiance, 1.25 below - 0.25 above over pi, at most clamp
+        below = np.minimum(below, 0.2 * sky + np.pi * clamp / 1.25)
+    return sky, below
 
 
 def ground_radiance(direct, sky, albedo):

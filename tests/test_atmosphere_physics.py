@@ -94,6 +94,10 @@ def test_the_two_hemispheres_light_level_sand_with_the_sky_and_legs_with_the_gro
         assert air.eevee_world_irradiance(above, below, 0.0, limit) == pytest.approx((sky + below) / 2)
         as_is = air.eevee_world_irradiance(sky, ground, 1.0, limit)
         derung_as_is += bool(np.abs(as_is / sky - 1).max() > 0.03)
+        # The scene's Clamp Surface Indirect on (EEVEE's 10): the ground gives way, the sky stays.
+        above, below = air.eevee_world_hemispheres(sky, ground, limit, clamp=10.0)
+        clamped = air.eevee_world_irradiance(above, below, 1.0, limit, clamp=10.0)
+        assert clamped == pytest.approx(sky, rel=1e-6)
     if version == (5, 0):  # 5.2 keeps a contrast of 12 to 1, about what lit sand gives
         assert derung_as_is >= 2
 
@@ -101,11 +105,14 @@ def test_the_two_hemispheres_light_level_sand_with_the_sky_and_legs_with_the_gro
 def test_eevees_deringing_scales_the_second_band_of_every_channel_alike():
     """The twin of EEVEE's world lighting on the cases measured in both versions (tests/test_eevee.py):
     a lit upper hemisphere gives level ground (1 + limit)/2 of its light; a contrast of 0.8 in one
-    channel damps the others' second band with it."""
+    channel damps the others' second band with it; the clamp scales everything down."""
     assert air.eevee_world_irradiance([1.0] * 3, [0.0] * 3, 1.0, 2 / 3) == pytest.approx([5 / 6] * 3)
     lit = air.eevee_world_irradiance([1.0, 9.0, 9.0], [1.0, 1.0, 3.0], 1.0, 2 / 3)
     assert lit == pytest.approx([1.0, 5 + 4 * (2 / 3) / 0.8, 6 + 3 * (2 / 3) / 0.8])
     assert air.eevee_world_irradiance([9.0] * 3, [1.0] * 3, -1.0, 0.86) == pytest.approx([1.0] * 3)
+    # Clamp Surface Indirect 10 on radiance 2.5 above, 23 below: brightest 12.75 + 15.375, so x 0.356.
+    clamped = air.eevee_world_irradiance([2.5 * np.pi] * 3, [23 * np.pi] * 3, 1.0, 0.86, clamp=10.0)
+    assert clamped / np.pi == pytest.approx([2.5 * 10 / 28.125] * 3)
 
 
 def test_ground_radiance_is_albedo_times_irradiance_over_pi():

@@ -307,13 +307,16 @@ def test_the_sky_lights_the_ground_in_eevee_as_in_cycles(eevee_scene, sandscape,
     assert np.abs(plain / cycles - 1.0).max() > 2 * SKY_TOLERANCE
 
 
-@pytest.mark.parametrize("above,below", [(1.0, 0.0), (9.0, 1.0), (2.5, 23.0)])
-def test_eevee_lights_from_two_hemispheres_as_its_twin_says(eevee_scene, sandscape, above, below):
+@pytest.mark.parametrize("above,below,clamp", [(1.0, 0.0, 0.0), (9.0, 1.0, 0.0), (2.5, 23.0, 0.0),
+                                               (2.5, 23.0, 10.0)])
+def test_eevee_lights_from_two_hemispheres_as_its_twin_says(eevee_scene, sandscape, above, below, clamp):
     """A white plane facing up, then down, under a world of two uniform hemispheres (radiance
-    `above` and `below`), Clamp Surface Indirect off: EEVEE's light against the twin of its
-    derung two bands (core.atmosphere.eevee_world_irradiance, the limit this Blender's). When
-    written on 5.2: (1, 0) 0.930 and 0.066 of the exact up and 0, (9, 1) and (2.5, 23) exact
-    within 1.4 %; on 5.0 (1, 0) 0.828 and 0.166, (9, 1) 8.25 and 1.66 (derung)."""
+    `above` and `below`) with Clamp Surface Indirect `clamp`: EEVEE's light against the twin of
+    its derung, clamped two bands (core.atmosphere.eevee_world_irradiance, the limit this
+    Blender's). When written on 5.2: (1, 0) 0.930 and 0.066 of the exact up and 0, (9, 1) and
+    (2.5, 23) exact within 1.9 %, clamped at 10 0.891 and 8.08 (twin 0.889 and 8.18); on 5.0
+    (1, 0) 0.828 and 0.166, (9, 1) 8.25 and 1.66 (derung), clamped 1.656 and 8.25 (twin 1.667
+    and 8.33)."""
     from core import atmosphere as air
 
     bpy.ops.mesh.primitive_plane_add(size=2)
@@ -321,7 +324,7 @@ def test_eevee_lights_from_two_hemispheres_as_its_twin_says(eevee_scene, sandsca
         "White", "ShaderNodeBsdfDiffuse", Color=(1.0, 1.0, 1.0, 1.0)))
     world = bpy.data.worlds.new("Two Hemispheres")
     eevee_scene.world, world.sun_threshold = world, 0.0
-    eevee_scene.eevee.clamp_surface_indirect = 0.0
+    eevee_scene.eevee.clamp_surface_indirect = clamp
     tree = world.node_tree
     direction, axes = tree.nodes.new("ShaderNodeTexCoord"), tree.nodes.new("ShaderNodeSeparateXYZ")
     upper = tree.nodes.new("ShaderNodeMath")
@@ -338,8 +341,10 @@ def test_eevee_lights_from_two_hemispheres_as_its_twin_says(eevee_scene, sandsca
                                        (-1.0, (0.0, 0.0, -5.0), (math.pi, 0.0, 0.0))):
         camera = scenes.camera("ORTHO", location=location, rotation=rotation, ortho_scale=1.0)
         seen = readback.render(eevee_scene)[..., :3].astype(np.float64).mean()
-        twin = air.eevee_world_irradiance([above] * 3, [below] * 3, facing, limit)[0]  # radiance x pi
-        print(f"hemispheres {above:g} / {below:g}, facing {facing:+g}: EEVEE {seen:.3f}, twin {twin:.3f}")
+        twin = air.eevee_world_irradiance([above * math.pi] * 3, [below * math.pi] * 3, facing, limit,
+                                          clamp)[0] / math.pi
+        print(f"hemispheres {above:g} / {below:g}, clamp {clamp:g}, facing {facing:+g}: EEVEE {seen:.3f}, "
+              f"twin {twin:.3f}")
         assert seen == pytest.approx(twin, rel=0.02, abs=0.01)
         bpy.data.objects.remove(camera)
 
