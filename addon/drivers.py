@@ -34,6 +34,17 @@ def lamp_axis(lamp, names=("sa", "sb", "sc")):
     return [(name, "OBJECT", lamp, f"matrix_world[2][{row}]") for row, name in enumerate(names)]
 
 
+def follow_lamp_axis(sockets, lamp):
+    """Drive three sockets' values by a lamp's world +Z, one component each (None: no lamp, 0)."""
+    names = ("sa", "sb", "sc")
+    for socket, name in zip(sockets, names, strict=True):
+        if lamp is None:
+            socket.driver_remove("default_value")
+            socket.default_value = 0.0
+        else:
+            drive(socket, "default_value", name, lamp_axis(lamp, names))
+
+
 def rearm(animation_data, expressions, ready):
     """Re-enable the invalid drivers of animation_data whose expression is one of ours and whose
     first target `ready(id)` says can be read now. Returns how many."""

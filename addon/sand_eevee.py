@@ -26,7 +26,6 @@ FRAME = "Sandscape EEVEE Frame"
 JOURNEY_SURFACE = "Sandscape EEVEE Journey Surface"
 NODES = (OUTPUT, BALANCE, SUN, SCALE, BOOST, BOOST_COLOR, BOTH, DOWN, UP, DOWN_HELD, UP_HELD, FRAME,
          JOURNEY_SURFACE)
-EXPRESSIONS = ("sa", "sb", "sc")  # the lamp's world +Z: towards the sun
 
 
 def attach(material, scene, look_node, look, glint=None):
@@ -88,14 +87,7 @@ def follow_sun(material, scene):
     sun_node = own.node(material.node_tree, SUN)
     if sun_node is None:
         return
-    sun = scene_sun(scene)
-    for index, expression in enumerate(EXPRESSIONS):
-        socket = sun_node.inputs[index]
-        if sun is None:
-            socket.driver_remove("default_value")
-            socket.default_value = 0.0
-        else:
-            drivers.drive(socket, "default_value", expression, drivers.lamp_axis(sun))
+    drivers.follow_lamp_axis(sun_node.inputs[:3], scene_sun(scene))
 
 
 def follows_scene_sun(material, scene):

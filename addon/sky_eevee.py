@@ -26,7 +26,6 @@ from . import ownership as own
 OUTPUT = "Sandscape EEVEE World Output"
 SUN, SUN_LIGHT = "Sandscape EEVEE Ground Sun", "Sandscape EEVEE Ground Sun Light"
 SKY_LIGHT, GROUND_COLOR = "Sandscape EEVEE Ground Sky Light", "Sandscape EEVEE Ground Colour"
-SUN_EXPRESSIONS = ("sa", "sb", "sc")  # the lamp's world +Z: towards the sun
 LIGHT_EXPRESSION = "energy * tint * (1 - hidden)"  # a lamp hidden from renders lights no sand
 CLAMP = "Sandscape EEVEE Clamp"
 CLAMP_EXPRESSION = "limit if limit > 0 else 1e9"  # 0: EEVEE clamps nothing
@@ -41,8 +40,7 @@ def build(tree, ray, shown):
     above = h.math(tree, "GREATER_THAN", axes.outputs["Z"], 0.0, label="Above the Horizon")
     sky, ground = _level_light(tree)
     # The ground held within the contrast EEVEE keeps without deringing (the sky stays exact).
-    limit = compat.eevee_dering_limit() * air.EEVEE_DERING_MARGIN
-    ratio = (1 + limit) / (1 - limit)
+    ratio = air.eevee_ground_ratio(compat.eevee_dering_limit())
     floor = h.add_node(tree, "ShaderNodeVectorMath", operation="SCALE", inputs={"Scale": 1 / ratio})
     ceiling = h.add_node(tree, "ShaderNodeVectorMath", operation="SCALE", inputs={"Scale": ratio})
     h.link(tree, sky, floor.inputs[0])
@@ -54,10 +52,12 @@ def build(tree, ray, shown):
     h.link(tree, raised.outputs[0], held.inputs[0])
     h.link(tree, ceiling.outputs[0], held.inputs[1])
     # EEVEE scales the whole world's light down where its brightest direction passes the scene's
-    # Clamp Surface Indirect: the ground, not the sky, gives way (1.25 below - 0.25 above <= pi C).
-    clamp = h.math(tree, "MULTIPLY", 0.0, math.pi / 1.25, label="Clamp Surface Indirect (driven) × π / 1.25")
+    # Clamp Surface Indirect: the ground, not the sky, gives way.
+    clamp = h.math(tree, "MULTIPLY", 0.0, math.pi / air.EEVEE_CLAMP_BELOW_WEIGHT,
+                   label="Clamp Surface Indirect (driven) × π / 1.25")
     clamp.name = CLAMP
-    cap = h.add_node(tree, "ShaderNodeVectorMath", operation="MULTIPLY_ADD", inputs={1: (0.2, 0.2, 0.2)})
+    cap = h.add_node(tree, "ShaderNodeVectorMath", operation="MULTIPLY_ADD",
+                     inputs={1: (air.EEVEE_CLAMP_SKY_SHARE,) * 3})
     h.link(tree, sky, cap.inputs[0])
     h.link(tree, clamp.outputs[0], cap.inputs[2])
     below = h.add_node(tree, "ShaderNodeVectorMath", operation="MINIMUM",
@@ -129,7 +129,6 @@ def _sky_irradiance(tree, height):
     for index in range(3):
         h.link(tree, height, grey.inputs[index])
     h.link(tree, grey.outputs[0], curves.inputs["Color"])
-    curves.inputs["Fac"].default_value = 1.0
     scaled = h.add_node(tree, "ShaderNodeVectorMath", operation="MULTIPLY", label="× Peak")
     h.link(tree, curves.outputs[0], scaled.inputs[0])
     scaled.inputs[1].default_value = tuple(float(p) for p in peaks)
@@ -142,18 +141,16 @@ def follow_sun(world, sun):
     direction, light = own.node(tree, SUN), own.node(tree, SUN_LIGHT)
     if direction is None or light is None:
         return
-    for index in range(3):
-        for socket, expression, variables in (
-                (direction.inputs[index], SUN_EXPRESSIONS[index], drivers.lamp_axis(sun) if sun else None),
-                (light.inputs[index], LIGHT_EXPRESSION,
-                 [("energy", "OBJECT", sun, "data.energy"), ("tint", "OBJECT", sun, f"data.color[{index}]"),
-                  ("hidden", "OBJECT", sun, "hide_render")]
-                 if sun else None)):
-            if variables is None:
-                socket.driver_remove("default_value")
-                socket.default_value = 0.0
-            else:
-                drivers.drive(socket, "default_value", expression, variables)
+    drivers.follow_lamp_axis(direction.inputs[:3], sun)
+    for index, socket in enumerate(light.inputs[:3]):
+        if sun is None:
+            socket.driver_remove("default_value")
+            socket.default_value = 0.0
+        else:
+            drivers.drive(socket, "default_value", LIGHT_EXPRESSION,
+                          [("energy", "OBJECT", sun, "data.energy"),
+                           ("tint", "OBJECT", sun, f"data.color[{index}]"),
+                           ("hidden", "OBJECT", sun, "hide_render")])
 
 
 def follow_clamp(world, scene):

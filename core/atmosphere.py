@@ -78,6 +78,14 @@ def sun_direction(elevation, azimuth):
 # 5.0's is 2/3 (its source); 5.2's was measured (tests/test_eevee.py, worlds lit by two hemispheres).
 EEVEE_DERING_LIMIT = {(5, 0): 2.0 / 3.0, (5, 2): 0.86}
 EEVEE_DERING_MARGIN = 0.98  # our worlds keep this far inside the limit, so EEVEE leaves them as they are
+# The two bands' brightest radiance is (1.25 below - 0.25 above) / pi: held at the clamp C, the
+# ground may reach 0.2 sky + pi C / 1.25.
+EEVEE_CLAMP_SKY_SHARE, EEVEE_CLAMP_BELOW_WEIGHT = 0.2, 1.25
+
+
+def eevee_ground_ratio(limit):
+    """How many times brighter (or darker) than the sky the ground may be without deringing."""
+    return (1 + limit * EEVEE_DERING_MARGIN) / (1 - limit * EEVEE_DERING_MARGIN)
 
 
 def eevee_world_irradiance(above, below, normal_z, limit, clamp=0.0):
@@ -105,10 +113,10 @@ def eevee_world_hemispheres(sky, ground, limit, clamp=0.0):
     exact: a ground far brighter than the sky is dimmed, one far darker brightened; and below
     the scene's Clamp Surface Indirect (0: off), where the ground gives way, not the sky."""
     sky, ground = np.asarray(sky, np.float64), np.asarray(ground, np.float64)
-    ratio = (1 + limit * EEVEE_DERING_MARGIN) / (1 - limit * EEVEE_DERING_MARGIN)
+    ratio = eevee_ground_ratio(limit)
     below = np.clip(ground, sky / ratio, sky * ratio)
-    if clamp > 0:  # the bands' brightest radiance, 1.25 below - 0.25 above over pi, at most clamp
-        below = np.minimum(below, 0.2 * sky + np.pi * clamp / 1.25)
+    if clamp > 0:
+        below = np.minimum(below, EEVEE_CLAMP_SKY_SHARE * sky + np.pi * clamp / EEVEE_CLAMP_BELOW_WEIGHT)
     return sky, below
 
 
