@@ -22,6 +22,8 @@ import itertools
 import numpy as np
 
 MIN_COSINE = 0.05
+# The balance corrects the sun's light: on faces turned from the sun (N·L at most 0) there is none
+# to correct, and it eases from the fit to 1 as N·L falls from MIN_COSINE to 0.
 BALANCE_RANGE = (0.5, 5.0)  # the fitted balance is held inside what the measurements spanned
 DEGREE = 3
 # exp(sum c v^i l^j a^k) over the terms (i, j, k), total degree at most DEGREE.
@@ -66,7 +68,9 @@ def target(cycles, eevee, diffuse):
 def balance(view, light, normal, coefficients=COEFFICIENTS):
     """The balance for the sand seen from `view` under a sun at `light`."""
     terms = design(*angles(view, light, normal))
-    return np.clip(np.exp(terms @ np.asarray(coefficients, np.float64)), *BALANCE_RANGE)
+    fitted = np.clip(np.exp(terms @ np.asarray(coefficients, np.float64)), *BALANCE_RANGE)
+    facing = np.sum(_unit(light) * _unit(normal), axis=-1)
+    return 1.0 + (fitted - 1.0) * np.clip(facing / MIN_COSINE, 0.0, 1.0)
 
 
 def fit(v, l_, a, ratio):

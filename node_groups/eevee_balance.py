@@ -9,7 +9,7 @@ from ..core import eevee_balance as twin
 from . import helper as h
 
 NAME = "Sandscape EEVEE Balance"
-VERSION = 4
+VERSION = 5
 TREE_TYPE = "ShaderNodeTree"
 DESCRIPTION = ("Cycles' brightness of Sandscape sand over EEVEE's at this view, sun and normal: the "
                "factor the sand's EEVEE output applies")
@@ -93,10 +93,17 @@ def build(tree):
     # No sun (a zero direction): 1.
     length = h.vector_math(tree, "LENGTH", inputs["Sun Direction"], label="|Sun|")
     sun = h.math(tree, "GREATER_THAN", length.outputs["Value"], 1e-6, label="A Sun")
+    # Faces turned from the sun get no sun to correct: the fit eases to 1 as N·L falls to 0.
+    facing = h.math(tree, "DIVIDE", l_dot.outputs["Value"], twin.MIN_COSINE, label="N·L ÷ Limit")
+    reached = h.add_node(tree, "ShaderNodeClamp", label="Sun Reaches (0..1)", inputs={"Min": 0.0, "Max": 1.0})
+    h.link(tree, facing.outputs[0], reached.inputs["Value"])
+    weight = h.math(tree, "MULTIPLY", sun.outputs[0], reached.outputs["Result"], label="Sun on the Face")
     minus_one = h.math(tree, "SUBTRACT", held.outputs["Result"], 1.0)
-    result = h.math(tree, "MULTIPLY_ADD", minus_one.outputs[0], sun.outputs[0], c=1.0, label="Balance or 1")
+    result = h.math(tree, "MULTIPLY_ADD", minus_one.outputs[0], weight.outputs[0], c=1.0,
+                    label="Balance or 1")
     h.link(tree, result.outputs[0], group_out.inputs["Balance"])
     h.frame(tree, "View, Sun and Azimuth about the Normal", angle_nodes)
     h.frame(tree, "Fitted Ratio", (*fit_nodes, exp, held))
-    h.frame(tree, "Without a Sun", (length, sun, minus_one, result))
+    h.frame(tree, "Without a Sun, or Turned from It",
+            (length, sun, facing, reached, weight, minus_one, result))
     h.arrange(tree)
