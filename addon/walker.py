@@ -30,6 +30,7 @@ LIMBS = ((0.06, 0.09, 0.88, 0.1, HIPS, -14.0), (0.06, 0.09, 0.88, -0.1, HIPS, 14
          (0.04, 0.05, 0.6, 0.22, 1.38, 10.0), (0.04, 0.05, 0.6, -0.22, 1.38, -10.0))
 TORSO = (0.16, 0.2, 0.56)  # radius at the hips, at the shoulders, length
 HEAD = 0.11  # radius; its top at HEIGHT
+NECK = (0.05, 0.06, 0.14)  # radius at the top, at the bottom, length: from inside the torso into the head
 
 
 def frame_range_problem(start, end):
@@ -121,6 +122,10 @@ def figure_mesh(scale):
     torso = Matrix.Translation((0.0, 0.0, HIPS + TORSO[2] / 2)) @ Matrix.Diagonal((0.65, 1.0, 1.0, 1.0))
     bmesh.ops.create_cone(bm, cap_ends=True, segments=12, radius1=TORSO[0], radius2=TORSO[1], depth=TORSO[2],
                           matrix=torso)
+    neck_top, neck_bottom, neck_length = NECK  # without it the head floated over the shoulders
+    neck = Matrix.Translation((0.0, 0.0, HEIGHT - 2 * HEAD + 0.04 - neck_length / 2))
+    bmesh.ops.create_cone(bm, cap_ends=True, segments=10, radius1=neck_bottom, radius2=neck_top,
+                          depth=neck_length, matrix=neck)
     bmesh.ops.create_uvsphere(bm, u_segments=12, v_segments=8, radius=HEAD,
                               matrix=Matrix.Translation((0.0, 0.0, HEIGHT - HEAD)))
     bmesh.ops.scale(bm, vec=(scale, scale, scale), verts=bm.verts)
