@@ -20,6 +20,11 @@ WIND = (0.6, 3.0, 0.0)  # metres per second, from the south: crests run east-wes
 FRAMES = (1, 240)
 SUN = (math.radians(6.0), 0.85)  # low, ahead-left of the walker, in view: slopes lit from the side
 CAMERA_OFFSET = (-4.5, -1.5, 0.9)  # behind, beside and low, metres: the prints read in raking sun
+# The offset turns with this share of the walker's heading, smoothed over CAMERA_TURN_FRAMES
+# either side: the trail keeps running from the camera toward the walker and the low sun stays in
+# frame (a fixed offset saw the trail run off sideways, 50 degrees from the view).
+CAMERA_TURN, CAMERA_TURN_FRAMES = 0.5, 24
+WALK_SWAY = 0.03  # a straighter S than Add Walker's (it turns up to 11 degrees, not 32)
 CAMERA_CLEARANCE = 0.6  # metres the camera keeps above the sand under it
 CAMERA_SMOOTH_FRAMES = 12  # the lift over a crest eases in and out over about this many frames
 CAMERA_SHIFT = (0.05, 0.05)  # lens shift, not a tilt: the walker low in frame, the low sun in it
@@ -44,12 +49,17 @@ def follow_camera(scene, figure, terrain):
     scene.collection.objects.link(camera)
     scene.camera = camera
     frames = np.arange(FRAMES[0], FRAMES[1] + 1)
-    places = []
+    walk = []
     for frame in frames:
         scene.frame_set(int(frame))
-        places.append(np.array(figure.matrix_world.translation) + np.array(CAMERA_OFFSET))
+        walk.append(np.array(figure.matrix_world.translation))
     scene.frame_set(FRAMES[0])
-    places = np.array(places)
+    walk = np.array(walk)
+    turn = CAMERA_TURN * smoothed(np.unwrap(np.arctan2(*np.gradient(walk[:, :2], axis=0).T[::-1])),
+                                  CAMERA_TURN_FRAMES)
+    x, y, z = CAMERA_OFFSET
+    places = walk + np.stack([x * np.cos(turn) - y * np.sin(turn), x * np.sin(turn) + y * np.cos(turn),
+                              np.full(len(turn), z)], axis=-1)
     top = float(np.max([v[2] for v in terrain.bound_box]))
     floor = walker.ground_heights(scene, terrain, places[:, :2], top) + CAMERA_CLEARANCE
     places[:, 2] = np.maximum(places[:, 2], eased_lift(floor))
@@ -68,9 +78,13 @@ def eased_lift(floor):
     span = CAMERA_SMOOTH_FRAMES
     padded = np.pad(floor, span, mode="edge")
     highest = np.array([padded[i:i + 2 * span + 1].max() for i in range(len(floor))])
-    kernel = np.hanning(2 * span + 1)
-    smooth = np.convolve(np.pad(highest, span, mode="edge"), kernel / kernel.sum(), mode="valid")
-    return np.maximum(smooth, floor)
+    return np.maximum(smoothed(highest, span), floor)
+
+
+def smoothed(values, span):
+    """A Hann-weighted running mean over `span` samples either side (the ends held)."""
+    kernel = np.hanning(2 * span + 3)[1:-1]  # no zero weights at the ends
+    return np.convolve(np.pad(values, span, mode="edge"), kernel / kernel.sum(), mode="valid")
 
 
 def build(context):
@@ -94,7 +108,7 @@ def build(context):
                scene=scene)
     steps = scene.sandscape_footprints
     steps.terrain = terrain
-    steps.walker, path = walker.ensure_walker(scene, terrain, *FRAMES)  # 14 m in 10 s, on the dunes
+    steps.walker, path = walker.ensure_walker(scene, terrain, *FRAMES, sway=WALK_SWAY)  # 14 m in 10 s
     steps.source = "WALKER"
     steps.resolution = 2048
     for name, value in PRINTS.items():

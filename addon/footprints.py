@@ -25,6 +25,7 @@ from ..node_groups import helper as h
 from ..node_groups import print_markers
 from . import compat, evaluation, rig_feet, sand, shot, units
 from . import ownership as own
+from . import walker as stand_in
 from .footprint_patch import ensure_cut, ensure_patch, region_box, write_print_image  # noqa: F401
 from .footprint_terrain import (  # noqa: F401 (the footprints API)
     FootprintError,
@@ -305,6 +306,9 @@ def paint(scene, settings, progress=None):
     """
     terrain = settings.terrain
     walked = walk(scene, settings, _stage(progress, 0.0, 0.4))
+    figure = settings.walker if settings.source == "WALKER" else None
+    if stand_in.needs_new_stride(scene, figure, *frame_range(scene, settings)):
+        stand_in.update_stride(scene, figure, *frame_range(scene, settings))  # its feet on its prints
     points_obj = find_object(scene, own.FOOTPRINTS, terrain)
     frame = find_object(scene, own.PRINT_FRAME, terrain)
     emitted = (points_obj is None or frame is None or points_obj.get("emitted_from") != walked["signature"]

@@ -21,7 +21,7 @@ TERRAIN_KEY = "sandscape_terrain"  # on footprint data: the terrain it belongs t
 
 # Kinds of objects
 SUN, DUST_VOLUME, CLOUDS = "sun", "dust_volume", "clouds"
-WALKER, WALK_PATH = "walker", "walk_path"
+WALKER, WALK_PATH, WALKER_LIMB = "walker", "walk_path", "walker_limb"
 FOOTPRINTS, PATCH, PRINT_FRAME = "footprints", "footprint_patch", "print_frame"
 DUNES, DUNE_HORIZON = "dunes", "dune_horizon"
 SCENERY = (DUNES,)  # ours, yet the scene's ground: counted where the scene's geometry is

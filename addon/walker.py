@@ -3,7 +3,8 @@ S-shaped curve at a walking pace, the path laid on the evaluated terrain every P
 artists without a rig. Any animated object works as a walker; this one is only a start.
 
 Both objects are ours (OBJECT_KEY "walker" and "walk_path") and found in the scene the
-operator runs in, so running it again updates them and another scene gets its own.
+operator runs in, so running it again updates them and another scene gets its own. Its limbs
+swing to the prints' stride (walker_gait).
 """
 
 import math
@@ -15,19 +16,17 @@ from bpy_extras import anim_utils
 from mathutils import Matrix, Vector
 from mathutils.bvhtree import BVHTree
 
-from . import evaluation, units
+from . import evaluation, units, walker_gait
 from . import ownership as own
+from .footprint_terrain import frame_list, sample_walker
 
 WALK_SPEED = 1.4  # metres per second: a walking pace
 PATH_STEP = 0.25  # metres between path points laid on the ground
+SWAY = 0.1  # the S reaches a tenth of its length to either side: it turns up to 32 degrees
 TERRAIN_SHARE = 0.8  # the walk never leaves the middle 80 % of the terrain (slower if it must)
 HEIGHT = 1.7  # metres: a person-sized stand-in
 CLOAK = (0.35, 0.045, 0.03, 1.0)  # linear: a red cloak against the sand (the traveller of seed 004)
-HIPS = 0.86  # metres above the soles
-# Tapered cylinders hanging from their top: (radius at the bottom, at the top, length, y and z of
-# the top's centre, tilt about Y in degrees), metres. Legs mid-stride, arms swinging against them.
-LIMBS = ((0.06, 0.09, 0.88, 0.1, HIPS, -14.0), (0.06, 0.09, 0.88, -0.1, HIPS, 14.0),
-         (0.04, 0.05, 0.6, 0.22, 1.38, 10.0), (0.04, 0.05, 0.6, -0.22, 1.38, -10.0))
+GAIT_KEY = "sandscape_stride"  # on the walker: what its limbs were keyed for
 TORSO = (0.16, 0.2, 0.56)  # radius at the hips, at the shoulders, length
 HEAD = 0.11  # radius; its top at HEIGHT
 NECK = (0.05, 0.06, 0.14)  # radius at the top, at the bottom, length: from inside the torso into the head
@@ -39,16 +38,45 @@ def frame_range_problem(start, end):
     return None
 
 
-def ensure_walker(scene, terrain, start, end):
-    """The scene's stand-in walker and its path, made or updated. Returns (walker, path)."""
+def ensure_walker(scene, terrain, start, end, sway=SWAY):
+    """The scene's stand-in walker and its path, made or updated (`sway`: the S's reach to either
+    side, a share of its length). Returns (walker, path)."""
     path = own.scene_object(scene, own.WALK_PATH) or _new_path(scene)
     fps = scene.render.fps / scene.render.fps_base
     _shape_path(scene, path, terrain, units.to_units(scene, (end - start) / fps * WALK_SPEED),
-                units.to_units(scene, PATH_STEP))
-    walker = own.scene_object(scene, own.WALKER) or _new_walker(scene, path)
+                units.to_units(scene, PATH_STEP), sway)
+    walker = own.scene_object(scene, own.WALKER)
+    if walker is None:
+        walker = _new_walker(scene, path)
+    elif not walker_gait.limbs(walker):  # a figure saved before its limbs swung had them in its mesh
+        cloak = own.slot_material(walker, own.CLOAK)
+        walker.data = figure_mesh(units.to_units(scene, 1.0))
+        walker.data.materials.append(cloak or _cloak_material())
     _stay_upright(walker)
     _animate(walker, start, end)
+    update_stride(scene, walker, start, end)
     return walker, path
+
+
+def update_stride(scene, walker, start, end):
+    """Key the stand-in's limbs to the prints' stride and stance (the scene's footprint settings)."""
+    steps, scale = scene.sandscape_footprints, units.to_units(scene, 1.0)
+    walker_gait.ensure_limbs(walker, own.slot_material(walker, own.CLOAK), scale, steps.stance)
+    frames = frame_list(start, end)
+    walker_gait.key_stride(walker, sample_walker(scene, walker, frames), frames, steps.stride, scale)
+    walker[GAIT_KEY] = stride_keyed_for(scene, start, end)
+
+
+def stride_keyed_for(scene, start, end):
+    """What the limbs' keys depend on besides the walk itself: paint re-keys when it changed."""
+    steps = scene.sandscape_footprints
+    return [float(steps.stride), float(steps.stance), float(start), float(end)]
+
+
+def needs_new_stride(scene, walker, start, end):
+    """Our stand-in, keyed for another stride, stance or frame range."""
+    return (walker is not None and walker.get(own.OBJECT_KEY) == own.WALKER
+            and list(walker.get(GAIT_KEY, [])) != stride_keyed_for(scene, start, end))
 
 
 def _new_path(scene):
@@ -59,7 +87,7 @@ def _new_path(scene):
     return path
 
 
-def _shape_path(scene, path, terrain, length, step):
+def _shape_path(scene, path, terrain, length, step, sway_share):
     """A gentle S `length` units along X through the terrain's middle (at most TERRAIN_SHARE of
     its world X extent), or through the origin without a terrain."""
     centre, top = np.zeros(3), 0.0
@@ -68,7 +96,7 @@ def _shape_path(scene, path, terrain, length, step):
         low, high = corners.min(0), corners.max(0)
         centre, extent, top = (low + high) / 2, high - low, high[2]
         length = min(length, TERRAIN_SHARE * extent[0])
-    sway = 0.1 * length
+    sway = sway_share * length
     count = 4 if terrain is None else max(4, int(math.ceil(length / step)) + 1)
     t = np.linspace(0.0, 1.0, count)
     points = np.stack([centre[0] + (t - 0.5) * length, centre[1] + sway * np.sin(2 * math.pi * t),
@@ -110,16 +138,12 @@ def ground_heights(scene, terrain, xy, top):
 
 
 def figure_mesh(scale):
-    """A low-poly figure standing on its origin facing +X, HEIGHT tall: legs mid-stride, arms,
-    a torso broader across than deep, a head. `scale`: scene units per metre."""
+    """A low-poly figure's body standing on its origin facing +X, HEIGHT tall: a torso broader
+    across than deep over the hips, a neck, a head (its limbs are walker_gait's).
+    `scale`: scene units per metre."""
     bm = bmesh.new()
-    for bottom, top, length, y, z_top, tilt in LIMBS:
-        # bmesh's cone is centred on its origin, its axis along Z: hang it from its top.
-        hang = Matrix.Translation((0.0, 0.0, -length / 2))
-        place = Matrix.Translation((0.0, y, z_top)) @ Matrix.Rotation(math.radians(tilt), 4, "Y") @ hang
-        bmesh.ops.create_cone(bm, cap_ends=True, segments=10, radius1=bottom, radius2=top, depth=length,
-                              matrix=place)
-    torso = Matrix.Translation((0.0, 0.0, HIPS + TORSO[2] / 2)) @ Matrix.Diagonal((0.65, 1.0, 1.0, 1.0))
+    hips = walker_gait.HIPS
+    torso = Matrix.Translation((0.0, 0.0, hips + TORSO[2] / 2)) @ Matrix.Diagonal((0.65, 1.0, 1.0, 1.0))
     bmesh.ops.create_cone(bm, cap_ends=True, segments=12, radius1=TORSO[0], radius2=TORSO[1], depth=TORSO[2],
                           matrix=torso)
     neck_top, neck_bottom, neck_length = NECK  # without it the head floated over the shoulders
@@ -136,22 +160,22 @@ def figure_mesh(scale):
     return mesh
 
 
-def _cloak(walker):
+def _cloak_material():
     material = own.mark(bpy.data.materials.new("Sandscape Walker Cloak"), own.MATERIAL_KEY, own.CLOAK)
-    walker.data.materials.append(material)
     material.diffuse_color = CLOAK
     nodes = material.node_tree.nodes if material.node_tree else ()
     shader = next((n for n in nodes if n.bl_idname == "ShaderNodeBsdfPrincipled"), None)
     if shader is not None:
         shader.inputs["Base Color"].default_value = CLOAK
         shader.inputs["Roughness"].default_value = 0.8
+    return material
 
 
 def _new_walker(scene, path):
     mesh = figure_mesh(units.to_units(scene, 1.0))
     walker = own.mark(bpy.data.objects.new("Sandscape Walker", mesh), own.OBJECT_KEY, own.WALKER)
     scene.collection.objects.link(walker)
-    _cloak(walker)
+    walker.data.materials.append(_cloak_material())
     follow = walker.constraints.new("FOLLOW_PATH")
     follow.target = path
     follow.use_curve_follow = True

@@ -70,3 +70,28 @@ def test_the_sun_reaches_the_walker_past_the_clouds_on_every_frame(sandscape, de
         density = readback.grid_values(layer, local)
         assert density.max() <= 1e-6, (frame, distances[density.argmax()])
 
+
+
+def test_every_frame_the_trail_runs_toward_the_walker_and_the_sun_is_in_frame(sandscape, demo_scene):
+    """The camera turns with the walk: on every frame the walker's heading is within 30 degrees of
+    the camera's view (the trail runs from the camera's side toward it, not off sideways: a fixed
+    offset saw 50 degrees), and the low sun stays in frame, left of the walker."""
+    from bpy_extras.object_utils import world_to_camera_view
+
+    scene = demo_scene
+    walker, camera = scene.sandscape_footprints.walker, scene.camera
+    sun = ours("sun")[0]
+    turns, suns = [], []
+    for frame in range(scene.frame_start, scene.frame_end + 1):
+        scene.frame_set(frame)
+        heading = walker.matrix_world.col[0]
+        view = -camera.matrix_world.col[2]
+        turns.append(np.degrees(np.arctan2(heading[1], heading[0]) - np.arctan2(view[1], view[0])))
+        far = camera.matrix_world.translation + sun.matrix_world.col[2].xyz.normalized() * 1000.0
+        suns.append(world_to_camera_view(scene, camera, far)[:])
+    turns, suns = np.abs(np.array(turns)), np.array(suns)
+    print(f"heading from view {turns.min():.1f}-{turns.max():.1f} deg, sun at x {suns[:, 0].min():.2f}"
+          f"-{suns[:, 0].max():.2f}")
+    assert turns.max() < 30.0
+    assert (suns[:, 2] > 0).all() and 0.02 < suns[:, 0].min() and suns[:, 0].max() < 0.4
+    assert (suns[:, 1] < 0.98).all()

@@ -222,11 +222,17 @@ def test_add_walker_makes_a_walk_that_paints(walk):
     assert bpy.ops.sandscape.add_walker() == {"FINISHED"}  # updates, no second walker
     walkers = [o for o in bpy.data.objects if o.get("sandscape_object") == "walker"]
     assert len(walkers) == 1 and walk.walker == walkers[0]
-    # A 1.7 m figure standing on its origin, one red cloak, not a second on the re-run.
+    # A 1.7 m figure standing on its origin, six limbs, one red cloak, not a second on the re-run.
     heights = [v.co.z for v in walkers[0].data.vertices]
-    assert max(heights) == pytest.approx(1.7, abs=1e-5) and -0.01 <= min(heights) <= 0.0
+    assert max(heights) == pytest.approx(1.7, abs=1e-5)
+    limbs = [o for o in bpy.data.objects if o.get("sandscape_object") == "walker_limb"]
+    assert len(limbs) == 6 and all(limb.parent == walkers[0] or limb.parent in limbs for limb in limbs)
+    to_figure = walkers[0].matrix_world.inverted()
+    lowest = min((to_figure @ limb.matrix_world @ v.co).z for limb in limbs for v in limb.data.vertices)
+    assert -0.03 <= lowest <= 0.0  # a planted foot sinks 2 cm into loose sand
     cloaks = [m for m in bpy.data.materials if m.get("sandscape_material") == "cloak"]
     assert len(cloaks) == 1 and walkers[0].active_material == cloaks[0]
+    assert all(limb.active_material == cloaks[0] for limb in limbs)
     assert bpy.ops.sandscape.paint_footprints() == {"FINISHED"}
     assert len(ours("points")[0].data.vertices) >= 2  # 1.25 s at a walking pace, 0.7 m strides
 

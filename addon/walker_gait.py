@@ -1,0 +1,123 @@
+"""The stand-in walker's limbs and their stride: child objects (thighs from the hips, shins from
+the knees, arms from the shoulders) whose swing is keyed on every frame from the walker's own
+motion, phased by core.gait to the prints the path plans, so a foot is under its hip where its
+print lies.
+
+Keys, not drivers: a file opened with scripts off walks the same. Limbs are ours (OBJECT_KEY
+"walker_limb", LIMB_KEY the limb's name), found among the walker's children.
+"""
+
+import bmesh
+import bpy
+import numpy as np
+from bpy_extras import anim_utils
+from mathutils import Matrix
+
+from ..core import gait, paths
+from . import ownership as own
+
+LIMB_KEY = "sandscape_limb"
+HIPS = 0.86  # metres above the soles
+THIGH = SHIN = 0.44  # a leg a hair longer than the hips are high: the planted foot sinks into the sand
+LEG_LENGTH = THIGH + SHIN
+STANCE_LIMITS = (0.06, 0.16)  # metres either side of the path a leg hangs (from the prints' stance)
+SHOULDER = 0.22  # metres from the middle
+# Tapered cylinders hanging from a pivot: name: (radius at the bottom, at the top, length, side,
+# the pivot's height over the soles, or its drop below the end of the limb it hangs from), metres.
+# A thigh's distance from the middle follows the stance.
+LIMBS = {"left_thigh": (0.07, 0.09, THIGH, paths.LEFT, HIPS),
+         "right_thigh": (0.07, 0.09, THIGH, paths.RIGHT, HIPS),
+         "left_shin": (0.055, 0.07, SHIN, paths.LEFT, THIGH),
+         "right_shin": (0.055, 0.07, SHIN, paths.RIGHT, THIGH),
+         "left_arm": (0.04, 0.05, 0.6, paths.LEFT, 1.38), "right_arm": (0.04, 0.05, 0.6, paths.RIGHT, 1.38)}
+HUNG_FROM = {"left_shin": "left_thigh", "right_shin": "right_thigh"}
+
+
+def limbs(walker):
+    """{name: object} of the walker's limbs that are ours."""
+    return {child[LIMB_KEY]: child for child in walker.children_recursive
+            if child.get(own.OBJECT_KEY) == own.WALKER_LIMB and child.get(LIMB_KEY) in LIMBS}
+
+
+def _limb_mesh(name, bottom, top, length, scale):
+    bm = bmesh.new()
+    # bmesh's cone is centred on its origin, its axis along Z: hang it from its top.
+    bmesh.ops.create_cone(bm, cap_ends=True, segments=10, radius1=bottom * scale, radius2=top * scale,
+                          depth=length * scale, matrix=Matrix.Translation((0.0, 0.0, -length * scale / 2)))
+    mesh = bpy.data.meshes.new(name)
+    bm.to_mesh(mesh)
+    bm.free()
+    mesh.shade_smooth()
+    return mesh
+
+
+def ensure_limbs(walker, material, scale, stance):
+    """The walker's limbs, made where missing, hung at their pivots (`stance` in scene units,
+    `scale` scene units per metre): thighs and arms from the body, shins from the knees.
+    Returns {name: object}."""
+    found = limbs(walker)
+    collections = walker.users_collection
+    for name, (bottom, top, length, side, pivot) in LIMBS.items():
+        limb = found.get(name)
+        if limb is None:
+            title = "Sandscape Walker " + name.replace("_", " ").title()
+            limb = bpy.data.objects.new(title, _limb_mesh(title, bottom, top, length, scale))
+            own.mark(limb, own.OBJECT_KEY, own.WALKER_LIMB, **{LIMB_KEY: name})
+            limb.data.materials.append(material)
+            for collection in collections:
+                collection.objects.link(limb)
+            found[name] = limb
+        limb.parent = found[HUNG_FROM[name]] if name in HUNG_FROM else walker
+        limb.rotation_mode = "XYZ"
+        if name in HUNG_FROM:
+            limb.location = (0.0, 0.0, -pivot * scale)
+            continue
+        across = SHOULDER * scale if name.endswith("arm") else float(
+            np.clip(stance / 2, STANCE_LIMITS[0] * scale, STANCE_LIMITS[1] * scale))
+        limb.location = (0.0, side * across, pivot * scale)
+    return found
+
+
+def key_stride(walker, positions, frames, stride, scale):
+    """Key each limb's swing on every frame from the walker's world `positions` at `frames`
+    (as footprints samples them), for prints `stride` scene units apart."""
+    arc = paths.arc_length(positions)
+    amplitude = gait.leg_amplitude(LEG_LENGTH * scale, stride)
+    for name, limb in limbs(walker).items():
+        side = LIMBS[name][3]
+        if name.endswith("shin"):  # bends back at the knee as its leg swings through
+            swing = -gait.knee_bend(arc, stride, side)
+        elif name.endswith("arm"):
+            swing = gait.arm_swing(arc, stride, amplitude, side)
+        else:
+            swing = gait.leg_swing(arc, stride, amplitude, side)
+        # A turn about local Y by -theta swings the limb's lower end forward (+X) by theta.
+        _key_every_frame(limb, "rotation_euler", 1, frames, -swing)
+
+
+def _key_every_frame(obj, path, index, frames, values):
+    curve = _curve(obj, path, index)
+    if curve is None:  # the first time: Blender makes the action, its slot and the curve
+        obj.keyframe_insert(path, index=index, frame=float(frames[0]))
+        curve = _curve(obj, path, index)
+    curve.keyframe_points.clear()
+    curve.keyframe_points.add(len(frames))
+    co = np.empty(2 * len(frames), np.float32)
+    co[0::2], co[1::2] = np.asarray(frames, np.float32), np.asarray(values, np.float32)
+    curve.keyframe_points.foreach_set("co", co)
+    curve.keyframe_points.foreach_set("interpolation", np.full(len(frames), _linear(), np.int32))
+    curve.update()
+
+
+def _curve(obj, path, index):
+    animation = obj.animation_data
+    if animation is None or animation.action is None:
+        return None
+    bag = anim_utils.action_get_channelbag_for_slot(animation.action, animation.action_slot)
+    curves = bag.fcurves if bag is not None else ()
+    return next((c for c in curves if c.data_path == path and c.array_index == index), None)
+
+
+def _linear():
+    return bpy.types.Keyframe.bl_rna.properties["interpolation"].enum_items["LINEAR"].value
+

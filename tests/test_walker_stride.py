@@ -1,0 +1,103 @@
+"""The stand-in walks: each foot passes under its hip where its print lies, and stands still there.
+
+References: the no-slip condition of a pendulum leg (core.gait's amplitude, checked by a finite
+difference here) and the prints core.paths plans (their world contacts in the points object).
+"""
+
+import bpy
+import numpy as np
+import pytest
+from mathutils import Vector
+
+from devtools import scenes
+
+LEG = 0.88
+
+
+def test_a_planted_foot_stands_still_as_the_hip_passes_over_it():
+    from core import gait
+
+    stride = 0.7
+    amplitude = gait.leg_amplitude(LEG, stride)
+    for side, prints in ((1, (0.0, 1.4, 2.8)), (-1, (0.7, 2.1))):
+        for at in prints:
+            arc = at + np.array([-0.01, 0.0, 0.01])
+            ahead, below = gait.foot_offset(arc, stride, amplitude, side, LEG)
+            foot = arc + ahead  # the foot's place along the walk
+            assert ahead[1] == pytest.approx(0.0, abs=1e-12) and below[1] == pytest.approx(LEG)
+            # Still to 1e-3 of the walk's own motion (a 10 % wrong swing slides it 2 mm): the hip moves
+            # 2 cm, the foot under 0.02 mm.
+            assert abs(foot[2] - foot[0]) < 1e-3 * 0.02
+            assert ahead[2] < 0 < ahead[0]  # moving back under the hip: the stance, not the swing
+    # Half a stride on, the legs are at their widest, one ahead and one behind.
+    left, right = (gait.leg_swing(0.35, stride, amplitude, side) for side in (1, -1))
+    assert left == pytest.approx(-amplitude) and right == pytest.approx(amplitude)
+    assert np.degrees(amplitude) == pytest.approx(14.5, abs=0.1)  # a 0.7 m stride: about 15 degrees
+    assert gait.leg_amplitude(LEG, 10.0) == gait.MAX_SWING
+    # The knee: straight on its own prints (the stance), bent most a stride later (mid-swing).
+    for side, planted in ((1, 0.0), (-1, 0.7)):
+        assert gait.knee_bend(planted + np.array([-0.3, 0.0, 0.3]), stride, side) == pytest.approx(0.0)
+        assert gait.knee_bend(planted + stride, stride, side) == pytest.approx(gait.KNEE_BEND)
+
+
+def shins(walker):
+    return {o["sandscape_limb"]: o for o in walker.children_recursive
+            if o.get("sandscape_object") == "walker_limb"}
+
+
+def lifted_feet(scene, walker, points):
+    """How high the other foot is over the walker's soles at each print's birth frame."""
+    side = np.empty(len(points.data.vertices), np.int32)
+    birth = np.empty(len(points.data.vertices), np.float32)
+    points.data.attributes["side"].data.foreach_get("value", side)
+    points.data.attributes["birth_frame"].data.foreach_get("value", birth)
+    lifts = []
+    for print_side, frame in zip(side[1:-1], birth[1:-1], strict=True):  # the ends: the walk starts or stops
+        scene.frame_set(int(np.floor(frame)), subframe=float(frame % 1.0))
+        other = shins(walker)["right_shin" if print_side > 0 else "left_shin"]
+        foot = other.matrix_world @ Vector((0.0, 0.0, -LEG / 2))
+        lifts.append(foot.z - walker.matrix_world.translation.z)
+    return np.array(lifts)
+
+
+def feet_at_births(scene, walker, points, frame_object):
+    """World positions of each print's own foot (its side's leg's lower end) at its birth frame."""
+    limbs = shins(walker)
+    side = np.empty(len(points.data.vertices), np.int32)
+    birth = np.empty(len(points.data.vertices), np.float32)
+    points.data.attributes["side"].data.foreach_get("value", side)
+    points.data.attributes["birth_frame"].data.foreach_get("value", birth)
+    contacts = np.array([frame_object.matrix_world @ v.co for v in points.data.vertices])
+    feet = []
+    for print_side, frame in zip(side, birth, strict=True):
+        scene.frame_set(int(np.floor(frame)), subframe=float(frame % 1.0))
+        leg = limbs["left_shin" if print_side > 0 else "right_shin"]
+        feet.append(np.array(leg.matrix_world @ Vector((0.0, 0.0, -LEG / 2))))
+    return contacts, np.array(feet)
+
+
+@pytest.mark.parametrize("stride", [0.7, 0.9])
+def test_each_foot_lands_on_its_print(sandscape, stride):
+    """Add Walker, then paint with the stride asked (a changed stride re-keys the limbs): at each
+    print's birth frame its own foot is under it within 3 cm, and in the sand: never above it, at
+    most 4 cm down (the leg reaches 2 cm below the hips' height over the path, and the sand
+    slopes across the walk)."""
+    terrain = scenes.height_field(30.0, 30, lambda x, y: 0.05 * x + 0.3 * np.sin(y / 3.0), name="Sand")
+    settings = scenes.footprint_settings(terrain, None, (1, 97), resolution=256)
+    assert bpy.ops.sandscape.add_walker() == {"FINISHED"}
+    settings.stride = stride
+    assert bpy.ops.sandscape.paint_footprints() == {"FINISHED"}
+    scene = bpy.context.scene
+    points = next(o for o in scene.objects if o.get("sandscape_object") == "footprints")
+    frame_object = next(o for o in scene.objects if o.get("sandscape_object") == "print_frame")
+    contacts, feet = feet_at_births(scene, settings.walker, points, frame_object)
+    assert len(contacts) >= 7
+    miss = np.linalg.norm(feet[:, :2] - contacts[:, :2], axis=1)
+    sink = contacts[:, 2] - feet[:, 2]
+    print(f"stride {stride}: foot to print {miss.max() * 100:.1f} cm, {sink.min() * 100:.1f}"
+          f"-{sink.max() * 100:.1f} cm into the sand")
+    assert miss.max() < 0.03
+    assert 0.0 <= sink.min() and sink.max() < 0.04
+    # As one foot passes over its print the other swings through, lifted clear of the sand:
+    # the figure walks, not glides.
+    assert (lifted_feet(scene, settings.walker, points) > 0.1).all()
