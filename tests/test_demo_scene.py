@@ -49,6 +49,8 @@ def test_every_frame_the_camera_is_above_the_sand_and_the_walker_on_it(sandscape
     assert (cameras[:, 2] - ground(scene, terrain, cameras[:, :2], top)).min() > 0.5
     assert np.abs(feet[:, 2] - ground(scene, terrain, feet[:, :2], top)).max() < 0.05
     assert np.linalg.norm(np.diff(cameras, axis=0), axis=1).max() < 0.2  # no jumps: 1.4 m/s is 6 cm a frame
+    speed = np.linalg.norm(np.diff(feet, axis=0), axis=1) * scene.render.fps / scene.render.fps_base
+    assert 1.35 < speed.min() and speed.max() < 1.5  # a walking pace on every frame
 
 
 def test_the_sun_reaches_the_walker_past_the_clouds_on_every_frame(sandscape, demo_scene):
