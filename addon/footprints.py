@@ -43,7 +43,7 @@ from .footprint_terrain import (  # noqa: F401 (the footprints API)
 )
 
 ATTRIBUTES = {  # point attribute name -> (type, meaning)
-    "birth_frame": ("FLOAT", "Frame at which the walker passes the print"),
+    "birth_frame": ("FLOAT", "Frame at which the print's foot lands"),
     "heading": ("FLOAT", "Yaw of the print's forward axis about world Z (the print frame's Z), radians"),
     "side": ("INT", "+1 left foot, -1 right foot, 0 unknown (particle source)"),
     "depth_scale": ("FLOAT", "Multiplies the print's depth and rim (seeded variation)"),
@@ -147,9 +147,11 @@ def print_axes(points):
 # ---------------------------------------------------------------- emit and paint
 
 def sole_from(settings):
-    """The sole, its wall as wide as dry sand crumbles at the set depth (all in scene units)."""
+    """A foot's sole (waisted, deepest under heel and ball), its wall as wide as dry sand crumbles
+    at the set depth (all in scene units)."""
     return painter.Sole(length=settings.foot_length, width=settings.foot_width,
-                        edge=painter.wall_width(settings.depth), rim_width=settings.rim_width)
+                        edge=painter.wall_width(settings.depth), rim_width=settings.rim_width,
+                        arch=painter.FOOT_ARCH, waist=painter.FOOT_WAIST)
 
 
 def frame_range(scene, settings):
@@ -214,6 +216,7 @@ def _walker_steps(scene, settings, walker, chosen, frames, progress=None, stride
                                  settings.stance * stride_scale)
     except paths.PathError as error:
         raise FootprintError(f"'{walker.name}': {error} ({start}..{end})") from error
+    steps["birth"] = steps["landing"]  # a print appears as its foot lands, as a rig's does
     steps["depth"], steps["stretch"] = np.ones(len(steps["birth"])), np.ones(len(steps["birth"]))
     steps["toe"] = np.zeros(len(steps["birth"]))
     steps["how"] = "along its path"

@@ -31,6 +31,10 @@ LIMBS = {"left_thigh": (0.07, 0.09, THIGH, paths.LEFT, HIPS),
          "right_shin": (0.055, 0.07, SHIN, paths.RIGHT, THIGH),
          "left_arm": (0.04, 0.05, 0.6, paths.LEFT, 1.38), "right_arm": (0.04, 0.05, 0.6, paths.RIGHT, 1.38)}
 HUNG_FROM = {"left_shin": "left_thigh", "right_shin": "right_thigh"}
+# A shin ends in a foot: a box (heel, toe: metres behind and ahead of the ankle; width; height)
+# centred on the ankle as the print is, so the foot fills the print it stands in.
+FOOT = (0.12, 0.14, 0.09, 0.07)
+SHAPE_KEY, SHAPE = "sandscape_limb_shape", 2  # 2: shins with feet (limbs before that had none)
 
 
 def limbs(walker):
@@ -44,6 +48,11 @@ def _limb_mesh(name, bottom, top, length, scale):
     # bmesh's cone is centred on its origin, its axis along Z: hang it from its top.
     bmesh.ops.create_cone(bm, cap_ends=True, segments=10, radius1=bottom * scale, radius2=top * scale,
                           depth=length * scale, matrix=Matrix.Translation((0.0, 0.0, -length * scale / 2)))
+    if name.endswith("Shin"):
+        heel, toe, width, height = (value * scale for value in FOOT)
+        box = Matrix.Translation(((toe - heel) / 2, 0.0, -length * scale + height / 2))
+        box = box @ Matrix.Diagonal((heel + toe, width, height, 1.0))
+        bmesh.ops.create_cube(bm, size=1.0, matrix=box)
     mesh = bpy.data.meshes.new(name)
     bm.to_mesh(mesh)
     bm.free()
@@ -59,14 +68,21 @@ def ensure_limbs(walker, material, scale, stance):
     collections = walker.users_collection
     for name, (bottom, top, length, side, pivot) in LIMBS.items():
         limb = found.get(name)
+        title = "Sandscape Walker " + name.replace("_", " ").title()
         if limb is None:
-            title = "Sandscape Walker " + name.replace("_", " ").title()
             limb = bpy.data.objects.new(title, _limb_mesh(title, bottom, top, length, scale))
             own.mark(limb, own.OBJECT_KEY, own.WALKER_LIMB, **{LIMB_KEY: name})
             limb.data.materials.append(material)
             for collection in collections:
                 collection.objects.link(limb)
             found[name] = limb
+        elif limb.get(SHAPE_KEY) != SHAPE:  # an older walker's limb: its mesh gets the new shape
+            old = limb.data
+            limb.data = _limb_mesh(title, bottom, top, length, scale)
+            limb.data.materials.append(material)
+            if old.users == 0:
+                bpy.data.meshes.remove(old)
+        limb[SHAPE_KEY] = SHAPE
         limb.parent = found[HUNG_FROM[name]] if name in HUNG_FROM else walker
         limb.rotation_mode = "XYZ"
         if name in HUNG_FROM:

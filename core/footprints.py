@@ -7,9 +7,10 @@ Channels (the numpy twin of what node group "Sandscape Footprint Height" reads):
   A  sole coverage, 0..1: where any sole pressed the sand (the owner test uses it)
 
 A print is a sole outline (heel circle, toe circle, tangent lines between them: an uneven
-capsule) pressed into a flat floor, a wall outside the outline up to the undisturbed sand (dry
-sand crumbles there toward its angle of repose, so the hollow is wider at the top than the sole)
-and a low rim bump beyond the wall's top.
+capsule, optionally waisted at the arch) pressed into a floor (flat, or deepest under heel and
+ball), a wall outside the outline up to the undisturbed sand (dry sand crumbles there to its
+angle of repose, so the hollow is wider at the top than the sole) and a low rim bump beyond the
+wall's top.
 Edges are never narrower than about a texel, so the image carries no aliasing steps.
 
 Composition, per texel, in birth order (it is associative, so prints go in chunks):
@@ -24,33 +25,47 @@ or per print.
 
 import numpy as np
 
-from .shaping import smoothstep, wind_direction
+from .shaping import wind_direction
 
 F32 = np.float32
 LOG_FLOOR = -69.0  # log(1e-30): a fully pressed texel keeps no rim, without log(0)
 CHUNK_ENTRIES = 1 << 22  # texel-print pairs per batch: bounds memory at any print count
 REPOSE = np.radians(34.0)  # dry quartz sand's angle of repose: the steepest a crumbled wall stands
 WINDWARD_SPEEDUP = 2.0  # the wind's fractional speed-up per unit of windward gradient
-WALL_STEEPNESS = 1.5  # a smoothstep's steepest slope over its mean: a wall this much wider stands at REPOSE
+WALL_ROUNDING = 0.2  # share of the wall, at its foot and at its top, that curves into the flat sand
+WALL_STEEPNESS = 1.0 / (1.0 - WALL_ROUNDING)  # the wall's straight part's slope over its mean slope
+FOOT_ARCH = 0.6  # a foot presses its arch this deep against its heel and ball
+FOOT_WAIST = 0.7  # the sole's width at its arch against a straight outline's
 
 
 class Sole:
     """Sole shape and profile, in metres. Immutable; `reach` bounds a stamp's influence.
 
     edge: width of the wall from the sole's outline out to the undisturbed sand (wall_width
-    gives the one that stands at the angle of repose for a depth)."""
+    gives the one that stands at the angle of repose for a depth).
+    arch: the floor's depth between heel and ball against theirs (1: a flat floor; FOOT_ARCH).
+    waist: the outline's width midway from heel to toe against a straight capsule's (1: none;
+    FOOT_WAIST)."""
 
-    __slots__ = ("length", "width", "heel_ratio", "edge", "rim_width")
+    __slots__ = ("length", "width", "heel_ratio", "edge", "rim_width", "arch", "waist")
 
-    def __init__(self, length=0.27, width=0.10, heel_ratio=0.75, edge=0.012, rim_width=0.04):
+    def __init__(self, length=0.27, width=0.10, heel_ratio=0.75, edge=0.012, rim_width=0.04, arch=1.0,
+                 waist=1.0):
         if not (length > 0 and width > 0 and rim_width >= 0 and edge >= 0):
             raise ValueError("sole length and width must be > 0, edge and rim width >= 0")
         if width > length:
             raise ValueError("sole width must not exceed its length")
         if not 0 < heel_ratio <= 1:
             raise ValueError("heel ratio must lie in (0, 1]")
+        if not (0 < arch <= 1 and 0 < waist <= 1):
+            raise ValueError("arch and waist must lie in (0, 1]")
         self.length, self.width, self.heel_ratio = float(length), float(width), float(heel_ratio)
         self.edge, self.rim_width = float(edge), float(rim_width)
+        self.arch, self.waist = float(arch), float(waist)
+
+    def centres(self):
+        """Where along the sole (a) the heel circle's and the toe circle's centres lie."""
+        return -self.length / 2 + self.heel_radius(), self.length / 2 - self.toe_radius()
 
     def toe_radius(self):
         return self.width / 2
@@ -70,8 +85,32 @@ class Sole:
 
 
 def wall_width(depth, repose=REPOSE):
-    """Width of a smoothstep wall down `depth` whose steepest slope is the angle of repose."""
+    """Width of a wall down `depth` whose straight part stands at the angle of repose."""
     return WALL_STEEPNESS * max(float(depth), 0.0) / np.tan(repose)
+
+
+def wall_ramp(t, rounding=WALL_ROUNDING):
+    """0 at t <= 0 to 1 at t >= 1: a straight slope whose ends curve (C1) over `rounding` of the
+    width into the flat floor and the flat sand, as a crumbled wall does."""
+    t = np.clip(t, 0.0, 1.0)
+    q = rounding
+    curve = 1.0 / (2.0 * q * (1.0 - q))
+    return np.where(t < q, curve * t * t,
+                    np.where(t > 1.0 - q, 1.0 - curve * (1.0 - t) ** 2, (t - q / 2) / (1.0 - q)))
+
+
+def _arch_hump(a, sole):
+    """0 at the heel's and toe's circle centres (and beyond), 1 midway between them; flat to the
+    second derivative at its ends (a kink there would draw a line across the print's shading)."""
+    heel, toe = sole.centres()
+    u = np.clip((a - heel) / max(toe - heel, 1e-9), 0.0, 1.0)
+    return (4.0 * u * (1.0 - u)) ** 3
+
+
+def floor_depth(a, sole):
+    """The floor's depth along the sole (a forward): 1 under the heel and the ball, `arch` between
+    them, through a smooth dip: a foot's heel and ball carry its weight."""
+    return 1.0 - (1.0 - sole.arch) * _arch_hump(a, sole)
 
 
 def sole_distance(a, b, sole):
@@ -83,23 +122,26 @@ def sole_distance(a, b, sole):
     r1, r2 = sole.heel_radius(), sole.toe_radius()
     heel = -sole.length / 2 + r1
     h = sole.length / 2 - r2 - heel
-    px = np.abs(b)
+    # A waist: the lateral offset stretched about the arch, the distance shrunk back by the same
+    # factor (so the wall stays as wide there, at the angle of repose).
+    stretch = 1.0 + (1.0 / sole.waist - 1.0) * _arch_hump(a, sole) if sole.waist < 1 else 1.0
+    px = np.abs(b) * stretch
     py = a - heel
     if h <= 1e-12:  # a round sole
         return np.hypot(px, py) - max(r1, r2)
     slope = (r1 - r2) / h
     along = np.sqrt(max(1.0 - slope * slope, 0.0))
     k = -slope * px + along * py
-    return np.where(k < 0, np.hypot(px, py) - r1,
-                    np.where(k > along * h, np.hypot(px, py - h) - r2, along * px + slope * py - r1))
-
+    distance = np.where(k < 0, np.hypot(px, py) - r1,
+                        np.where(k > along * h, np.hypot(px, py - h) - r2, along * px + slope * py - r1))
+    return distance / stretch
 
 
 def sole_profile(distance, sole, texel):
     """Pressed fraction s (1 on the floor inside the outline, falling to 0 across the wall
     outside it) and rim bump (0..1, peak 1) beyond the wall's top."""
     wall = sole.edge_width(texel)
-    pressed = 1.0 - smoothstep(0.0, wall, distance)
+    pressed = 1.0 - wall_ramp(distance / wall)
     band = sole.rim_band(texel)
     if band <= 0:
         return pressed, np.zeros_like(pressed)
@@ -228,7 +270,10 @@ def _stamp_chunk(flat, region, sole, window, half, prints, centres, inverse, bir
     scale = scales[prints][rank]
     birth = birth_unit[prints][rank]
     # The depth tilts from heel (-1) to toe (+1) along the sole; the rim stays even.
-    tilt = 1.0 + toe[prints][rank] * np.clip(a[inside].astype(np.float64) / (sole.length / 2), -1.0, 1.0)
+    along = a[inside].astype(np.float64)
+    tilt = 1.0 + toe[prints][rank] * np.clip(along / (sole.length / 2), -1.0, 1.0)
+    if sole.arch < 1:
+        tilt = tilt * floor_depth(along, sole)
     # Group by texel, in birth order within each texel (prints arrive sorted by birth).
     sort = np.argsort(pixel * len(prints) + rank, kind="stable")
     pixel, pressed, rim, scale, birth = pixel[sort], pressed[sort], rim[sort], scale[sort], birth[sort]

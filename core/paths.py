@@ -10,6 +10,10 @@ import numpy as np
 
 UP = np.array((0.0, 0.0, 1.0))
 LEFT, RIGHT = 1, -1
+# Share of a stride by which a foot lands before the hip passes over its print: core.gait's
+# pendulum has the foot down on the print from there (a print that waited for the hip would
+# appear under a foot already standing in the sand).
+LANDING_LEAD = 0.25
 
 
 class PathError(ValueError):
@@ -61,6 +65,8 @@ def plan_steps(positions, frames, stride, stance, first_side=LEFT):
       heading (N,):   atan2 of forward, radians about +Z
       side (N,):      +1 left, -1 right, alternating
       birth (N,):     frame at which the walker passes the step (interpolated along the arc)
+      landing (N,):   frame at which its foot lands, LANDING_LEAD of a stride earlier (the
+                      first step lands on the first frame)
     """
     positions = np.asarray(positions, dtype=np.float64)
     frames = np.asarray(frames, dtype=np.float64)
@@ -90,6 +96,7 @@ def plan_steps(positions, frames, stride, stance, first_side=LEFT):
         "heading": np.arctan2(forward[:, 1], forward[:, 0]),
         "side": side.astype(np.int32),
         "birth": np.interp(s, arc, frames),
+        "landing": np.interp(np.maximum(s - LANDING_LEAD * stride, 0.0), arc, frames),
     }
 
 

@@ -2,7 +2,7 @@
 
 Seed 000, section 3.2: red records depressions, green raised rims, and a noise texture
 adds subtle variation. Blue holds each texel's birth frame, so one image reveals the prints
-as the walker passes: a texel counts once Frame has reached its birth frame. Frame is
+as the feet land: a texel counts once Frame has reached its birth frame. Frame is
 driven by the expression `frame`, which runs without Python auto-run. With a Refill Time the
 wind fills a print in: its depth and rim ease towards the surface as exp(−age × rate / Refill
 Time), rate 1 on flat ground and in the lee and (1 + 2 g)³ where the ground rises into the Wind

@@ -230,6 +230,10 @@ def test_add_walker_makes_a_walk_that_paints(walk):
     to_figure = walkers[0].matrix_world.inverted()
     lowest = min((to_figure @ limb.matrix_world @ v.co).z for limb in limbs for v in limb.data.vertices)
     assert -0.03 <= lowest <= 0.0  # a planted foot sinks 2 cm into loose sand
+    # Each shin ends in a foot reaching forward from its ankle, about as long as a print.
+    for shin in (limb for limb in limbs if limb["sandscape_limb"].endswith("shin")):
+        along = [v.co.x for v in shin.data.vertices]
+        assert max(along) - min(along) == pytest.approx(0.26, abs=1e-5) and max(along) > 0.1
     cloaks = [m for m in bpy.data.materials if m.get("sandscape_material") == "cloak"]
     assert len(cloaks) == 1 and walkers[0].active_material == cloaks[0]
     assert all(limb.active_material == cloaks[0] for limb in limbs)
@@ -293,3 +297,20 @@ def test_add_walker_refuses_a_terrain_with_no_faces():
     with pytest.raises(RuntimeError, match="has no faces to walk on"):
         bpy.ops.sandscape.add_walker()
     assert readback.data_snapshot() == before
+
+
+def test_add_walker_gives_an_older_walkers_shins_feet(walk):
+    """A walker saved before shins had feet: Add Walker again replaces its limbs' meshes in place
+    (the same objects, the old meshes gone), and the legs reach forward into feet."""
+    walk.walker = None
+    assert bpy.ops.sandscape.add_walker() == {"FINISHED"}
+    limbs = {o["sandscape_limb"]: o for o in bpy.data.objects if o.get("sandscape_object") == "walker_limb"}
+    shin = limbs["left_shin"]
+    bare = bpy.data.meshes.new("bare shin")
+    bare.from_pydata([(0, 0, 0), (0, 0, -0.44), (0.01, 0, -0.44)], [], [(0, 1, 2)])
+    shin.data, shin["sandscape_limb_shape"] = bare, 1
+    meshes = len(bpy.data.meshes)
+    assert bpy.ops.sandscape.add_walker() == {"FINISHED"}
+    again = {o["sandscape_limb"]: o for o in bpy.data.objects if o.get("sandscape_object") == "walker_limb"}
+    assert again == limbs and "bare shin" not in bpy.data.meshes and len(bpy.data.meshes) == meshes
+    assert max(v.co.x for v in shin.data.vertices) > 0.1

@@ -273,3 +273,29 @@ def test_eevee_levels_halve_the_longest_kept_edge_to_the_target():
     assert levels(points, corner_vertex, corner_face, [True, True], 0.01) == 6  # the cap
     assert levels(points, corner_vertex, corner_face, [True, True], 2.0) == 0
     assert levels(points, corner_vertex, corner_face, [False, False], 0.03) == 0
+
+
+def test_a_foots_print_is_waisted_and_deepest_under_heel_and_ball():
+    """A foot's sole (FOOT_ARCH, FOOT_WAIST): the floor is the set depth under the heel's and the
+    toe's circle centres and FOOT_ARCH of it midway between; the outline is FOOT_WAIST as wide
+    there as a straight capsule's; its walls still stand no steeper than the angle of repose."""
+    texel, depth = 0.001, 0.04
+    plain = fp.Sole(edge=fp.wall_width(depth), rim_width=0.0)
+    foot = fp.Sole(edge=fp.wall_width(depth), rim_width=0.0, arch=fp.FOOT_ARCH, waist=fp.FOOT_WAIST)
+    region = fp.Region(-0.3, -0.3, texel, 600, 600)
+    images = [fp.paint([[0.0, 0.0]], [[1.0, 0.0]], [[0.0, 1.0]], [0.0], 1.0, region, sole)
+              for sole in (plain, foot)]
+    xs = region.x0 + (np.arange(region.width) + 0.5) * texel
+    heel, toe = foot.centres()
+    middle = (heel + toe) / 2
+    row = texel_of(region, (0.0, 0.0))[0]
+    for at, expected in ((heel, 1.0), (toe, 1.0), (middle, fp.FOOT_ARCH)):
+        col = int(np.argmin(np.abs(xs - at)))
+        assert images[1][row, col, 0] == pytest.approx(expected, abs=2e-3)
+    col = int(np.argmin(np.abs(xs - middle)))
+    widths = [(image[:, col, 3] >= 1.0 - 1e-6).sum() * texel for image in images]
+    assert widths[1] / widths[0] == pytest.approx(fp.FOOT_WAIST, abs=2 * texel / widths[0])
+    across = depth * images[1][:, col, 0].astype(np.float64)
+    along = depth * images[1][row, :, 0].astype(np.float64)
+    steepest = max(np.abs(np.diff(profile)).max() for profile in (across, along)) / texel
+    assert math.degrees(math.atan(steepest)) <= 34.05  # float32 round-off over a 1 mm texel

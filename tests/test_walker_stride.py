@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 from mathutils import Vector
 
+from core import paths
 from devtools import scenes
 
 LEG = 0.88
@@ -45,43 +46,40 @@ def shins(walker):
             if o.get("sandscape_object") == "walker_limb"}
 
 
-def lifted_feet(scene, walker, points):
-    """How high the other foot is over the walker's soles at each print's birth frame."""
-    side = np.empty(len(points.data.vertices), np.int32)
-    birth = np.empty(len(points.data.vertices), np.float32)
+def print_frames(scene, walker, points, stride, stance):
+    """Each print's side, the frame its foot lands (its birth frame) and the frame the walker
+    passes over it: core.paths' plan of the walker's world path, sampled here per frame."""
+    count = len(points.data.vertices)
+    side, landing = np.empty(count, np.int32), np.empty(count, np.float32)
     points.data.attributes["side"].data.foreach_get("value", side)
-    points.data.attributes["birth_frame"].data.foreach_get("value", birth)
-    lifts = []
-    for print_side, frame in zip(side[1:-1], birth[1:-1], strict=True):  # the ends: the walk starts or stops
-        scene.frame_set(int(np.floor(frame)), subframe=float(frame % 1.0))
-        other = shins(walker)["right_shin" if print_side > 0 else "left_shin"]
-        foot = other.matrix_world @ Vector((0.0, 0.0, -LEG / 2))
-        lifts.append(foot.z - walker.matrix_world.translation.z)
-    return np.array(lifts)
+    points.data.attributes["birth_frame"].data.foreach_get("value", landing)
+    frames = np.arange(scene.frame_start, scene.frame_end + 1, dtype=np.float64)
+    path = []
+    for frame in frames:
+        scene.frame_set(int(frame))
+        path.append(np.array(walker.matrix_world.translation))
+    passing = paths.plan_steps(np.array(path), frames, stride, stance)["birth"]
+    assert len(passing) == count
+    return side, landing, passing
 
 
-def feet_at_births(scene, walker, points, frame_object):
-    """World positions of each print's own foot (its side's leg's lower end) at its birth frame."""
-    limbs = shins(walker)
-    side = np.empty(len(points.data.vertices), np.int32)
-    birth = np.empty(len(points.data.vertices), np.float32)
-    points.data.attributes["side"].data.foreach_get("value", side)
-    points.data.attributes["birth_frame"].data.foreach_get("value", birth)
-    contacts = np.array([frame_object.matrix_world @ v.co for v in points.data.vertices])
-    feet = []
-    for print_side, frame in zip(side, birth, strict=True):
-        scene.frame_set(int(np.floor(frame)), subframe=float(frame % 1.0))
-        leg = limbs["left_shin" if print_side > 0 else "right_shin"]
-        feet.append(np.array(leg.matrix_world @ Vector((0.0, 0.0, -LEG / 2))))
-    return contacts, np.array(feet)
+def at(scene, frame):
+    scene.frame_set(int(np.floor(frame)), subframe=float(frame % 1.0))
+
+
+def foot(limbs, side):
+    leg = limbs["left_shin" if side > 0 else "right_shin"]
+    return np.array(leg.matrix_world @ Vector((0.0, 0.0, -LEG / 2)))
 
 
 @pytest.mark.parametrize("stride", [0.7, 0.9])
 def test_each_foot_lands_on_its_print(sandscape, stride):
-    """Add Walker, then paint with the stride asked (a changed stride re-keys the limbs): at each
-    print's birth frame its own foot is under it within 3 cm, and in the sand: never above it, at
-    most 4 cm down (the leg reaches 2 cm below the hips' height over the path, and the sand
-    slopes across the walk)."""
+    """Add Walker, then paint with the stride asked (a changed stride re-keys the limbs):
+    - as the walker passes over a print its own foot is under it within 3 cm, and in the sand:
+      never above it, at most 4 cm down (the leg reaches 2 cm below the hips' height over the
+      path, and the sand slopes across the walk), while the other foot swings through, lifted;
+    - the print appears (its birth frame) as that foot lands: within 5 cm of it, touching the
+      sand (at most 2 cm above it), a quarter stride before the walker passes."""
     terrain = scenes.height_field(30.0, 30, lambda x, y: 0.05 * x + 0.3 * np.sin(y / 3.0), name="Sand")
     settings = scenes.footprint_settings(terrain, None, (1, 97), resolution=256)
     assert bpy.ops.sandscape.add_walker() == {"FINISHED"}
@@ -90,14 +88,33 @@ def test_each_foot_lands_on_its_print(sandscape, stride):
     scene = bpy.context.scene
     points = next(o for o in scene.objects if o.get("sandscape_object") == "footprints")
     frame_object = next(o for o in scene.objects if o.get("sandscape_object") == "print_frame")
-    contacts, feet = feet_at_births(scene, settings.walker, points, frame_object)
+    contacts = np.array([frame_object.matrix_world @ v.co for v in points.data.vertices])
+    side, landing, passing = print_frames(scene, settings.walker, points, stride, settings.stance)
     assert len(contacts) >= 7
+    limbs = shins(settings.walker)
+    feet, landed, lifts = [], [], []
+    for k in range(len(contacts)):
+        at(scene, passing[k])
+        feet.append(foot(limbs, side[k]))
+        if 0 < k < len(contacts) - 1:  # the ends: the walk starts or stops
+            lifts.append(foot(limbs, -side[k])[2] - settings.walker.matrix_world.translation.z)
+        at(scene, landing[k])
+        landed.append(foot(limbs, side[k]))
+    feet, landed = np.array(feet), np.array(landed)
     miss = np.linalg.norm(feet[:, :2] - contacts[:, :2], axis=1)
     sink = contacts[:, 2] - feet[:, 2]
+    land_miss = np.linalg.norm(landed[1:, :2] - contacts[1:, :2], axis=1)  # the first lands on frame 1
+    land_height = landed[1:, 2] - contacts[1:, 2]
     print(f"stride {stride}: foot to print {miss.max() * 100:.1f} cm, {sink.min() * 100:.1f}"
-          f"-{sink.max() * 100:.1f} cm into the sand")
+          f"-{sink.max() * 100:.1f} cm into the sand; at landing {land_miss.max() * 100:.1f} cm off, "
+          f"{land_height.min() * 100:.1f} to {land_height.max() * 100:.1f} cm above it")
     assert miss.max() < 0.03
     assert 0.0 <= sink.min() and sink.max() < 0.04
     # As one foot passes over its print the other swings through, lifted clear of the sand:
     # the figure walks, not glides.
-    assert (lifted_feet(scene, settings.walker, points) > 0.1).all()
+    assert (np.array(lifts) > 0.1).all()
+    assert land_miss.max() < 0.05 and land_height.max() < 0.02
+    lead = np.median(passing[1:] - landing[1:])
+    assert 0.0 < lead
+
+
