@@ -8,7 +8,7 @@ rerouted, so a decision is easy to undo by hand (and Ctrl+Z undoes the whole ope
 import numpy as np
 from mathutils import Vector
 
-from . import atmosphere, evaluation, post, sand, sun_screen
+from . import atmosphere, evaluation, post, post_glow, sand, sun_screen
 from . import ownership as own
 from .post_passes import CYCLES, EEVEE
 
@@ -36,7 +36,7 @@ def decisions(scene):
     as EEVEE's passes are in Cycles."""
     cycles = not for_eevee(scene)
     checks = (_empty_volumes, _empty_world_volume, *((_idle_adaptive_subdivision,) if cycles else ()),
-              _dark_glints, _idle_god_rays)
+              _dark_glints, _idle_god_rays, _idle_sun_glow)
     found = [decision for check in checks for decision in check(scene)]
     if cycles:
         found.extend(_idle_volume_bounces(scene, found))
@@ -192,6 +192,19 @@ def _idle_god_rays(scene):
     if reason:
         yield Decision(f"God rays removed from the compositor: {reason}", lambda s=scene: _drop_rays(s),
                        IDLE_RAYS, scene)
+
+
+def _idle_sun_glow(scene):
+    tree = own.scene_compositor(scene)
+    if tree is None or own.node(tree, post_glow.GLOW) is None or not _always_zero(scene):
+        return
+    yield Decision("Sun glow removed from the compositor: the sun is out of view on every frame",
+                   lambda s=scene: _drop_glow(s), IDLE_RAYS, scene)
+
+
+def _drop_glow(scene):
+    scene.sandscape_post.use_sun_glow = False
+    post.apply_post_effects(scene, scene.sandscape_post)
 
 
 def _always_zero(scene):

@@ -1,5 +1,5 @@
-"""The scene's compositor tree: Render Layers -> gated blur of the scattered light -> god rays,
-with the render's alpha kept.
+"""The scene's compositor tree: Render Layers -> gated blur of the scattered light -> god rays ->
+the sun's glow, with the render's alpha kept.
 
 Not a shared group but the tree on scene.compositing_node_group, one per scene, rebuilt from the
 settings on every run (an effect switched off is absent, not bypassed). Its parts are the
@@ -19,6 +19,7 @@ from ..node_groups import helper as h
 from . import atmosphere, drivers, evaluation, sand, sun_screen
 from . import ownership as own
 from . import post_passes as passes
+from .post_glow import add_glow
 
 SUN_COLOR = (1.0, 0.93, 0.8, 1.0)
 DENOISE, DENOISE_VOLUME = "Sandscape Denoise", "Sandscape Denoise Scattered"
@@ -57,7 +58,7 @@ def build(tree, settings, white=1.0, image_denoised=False, scene=None, engine=pa
     if not tree.interface.items_tree:
         h.add_output(tree, "Image", "NodeSocketColor", "The composited frame")
     tree.description = ("Sandscape post effects: denoising of all but the glints, gated blur of the "
-                        "scattered light, god rays")
+                        "scattered light, god rays, the sun's glow")
     layers = h.add_node(tree, "CompositorNodeRLayers", name="Sandscape Render Layers")
     if scene is not None:  # a scene not shown: its own layers, not the shown scene's
         layers.scene = scene
@@ -99,6 +100,8 @@ def build(tree, settings, white=1.0, image_denoised=False, scene=None, engine=pa
         h.link(tree, image, total.inputs[0])
         h.link(tree, shown.outputs[0], total.inputs[1])
         image = total.outputs[0]
+    if settings.use_sun_glow:
+        image = add_glow(tree, image, settings.glow_strength, white, scene)
     # Vector maths leave alpha at 1: the render's own alpha goes back on (Film > Transparent).
     alpha = h.add_node(tree, "CompositorNodeSetAlpha", name="Sandscape Keep Alpha", label="Keep Alpha",
                        inputs={"Type": "Replace Alpha"})
@@ -271,6 +274,10 @@ def _occlusion(tree, layers, sun, radius):
 
 # ---------------------------------------------------------------- the operator's work
 
+def any_effect(settings):
+    return settings.use_denoise or settings.use_blur or settings.use_god_rays or settings.use_sun_glow
+
+
 def route(scene, settings):
     """What the tree is built for: the engine and, where the tree depends on it, whether Cycles
     denoises the image."""
@@ -296,7 +303,7 @@ def apply_post_effects(scene, settings, rebuild_only=False):
         ours = None  # shared with another scene: this scene gets its own
     layer = rendered_layer(scene)
     engine = scene.render.engine
-    if not (settings.use_denoise or settings.use_blur or settings.use_god_rays):
+    if not any_effect(settings):
         if ours is not None:
             _, off = passes.update(ours, scene, layer, None, engine, GLINT_AOV)
             changes += _pass_changes(layer, [], off)
@@ -348,7 +355,7 @@ def _pass_changes(layer, on, off):
 def set_denoise(scene, on):
     """Switch the tree's denoising of all but the glints on or off (a quality preset's choice).
 
-    A scene without our tree gets one that only denoises; its blur and god rays stay as set.
+    A scene without our tree gets one that only denoises; its blur, god rays and glow stay as set.
     """
     settings = scene.sandscape_post
     settings.use_denoise = on
@@ -358,7 +365,7 @@ def set_denoise(scene, on):
         return None
     names = [p.identifier for p in settings.bl_rna.properties if p.identifier not in ("rna_type", "name")]
     only = types.SimpleNamespace(**{name: getattr(settings, name) for name in names})
-    only.use_blur = only.use_god_rays = False
+    only.use_blur = only.use_god_rays = only.use_sun_glow = False
     return apply_post_effects(scene, only)
 
 

@@ -303,7 +303,7 @@ class SandscapePostSettings(bpy.types.PropertyGroup):
     LIMITS = {
         "blur_threshold": (0.0, 1e6), "samples": (1, 1024), "ray_density": (0.0, 1.0),
         "ray_weight": (0.0, 100.0), "ray_decay": (0.0, 1.0), "ray_exposure": (0.0, 1e4),
-        "disc_radius": (1e-4, 10.0), "fade": (0.0, 10.0),
+        "disc_radius": (1e-4, 10.0), "fade": (0.0, 10.0), "glow_strength": (0.0, 100.0),
     }
 
     use_denoise: BoolProperty(name="Denoise", default=True,
@@ -330,6 +330,11 @@ class SandscapePostSettings(bpy.types.PropertyGroup):
                                description="Radius of the glowing disc around the sun, in frame heights")
     fade: FloatProperty(name="Edge Fade", default=0.25, soft_min=0.0, soft_max=1.0,
                         description="How far outside the frame (in frame widths) the rays fade out")
+    use_sun_glow: BoolProperty(name="Sun Glow", default=True,
+                               description="A soft glow round the sun's disc where it is in view, as a "
+                               "camera sees it (Fog Glow on light far above white: the sun, not the glints)")
+    glow_strength: FloatProperty(name="Strength", default=1.0, soft_min=0.0, soft_max=4.0,
+                                 description="How bright the sun's glow is")
 
 
 def dune_fields(for_operator):

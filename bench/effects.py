@@ -55,6 +55,10 @@ def removals(bpy, scene, modules):
         scene.sandscape_post.use_god_rays = False
         post.apply_post_effects(scene, scene.sandscape_post)
 
+    def no_glow():
+        scene.sandscape_post.use_sun_glow = False
+        post.apply_post_effects(scene, scene.sandscape_post)
+
     def no_clouds():
         clouds.remove_layer(scene)
 
@@ -68,8 +72,8 @@ def removals(bpy, scene, modules):
         air.use_haze = False
         modules["atmosphere"].apply(scene, air)
 
-    return {"footprints": no_prints, "god rays": no_god_rays, "clouds": no_clouds, "glints": no_glints,
-            "dusty air": no_dust}
+    return {"footprints": no_prints, "god rays": no_god_rays, "sun glow": no_glow, "clouds": no_clouds,
+            "glints": no_glints, "dusty air": no_dust}
 
 
 def build_demo(bpy, samples, frame):

@@ -51,7 +51,8 @@ class SANDSCAPE_OT_add_post_effects(SandscapeOperator, bpy.types.Operator):
             return self.fail(problem)
         done = post.apply_post_effects(scene, settings)
         switches = (("denoising (all but the glints)", settings.use_denoise and not done["skipped"]),
-                    ("gated blur", settings.use_blur), ("god rays", settings.use_god_rays))
+                    ("gated blur", settings.use_blur), ("god rays", settings.use_god_rays),
+                    ("sun glow", settings.use_sun_glow))
         effects = [name for name, on in switches if on] or ["none"]
         line = f"Post effects in {passes.ENGINE_NAMES[scene.render.engine]}: {', '.join(effects)}"
         if settings.use_god_rays and done["tree"] is not None:

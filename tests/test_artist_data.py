@@ -252,7 +252,8 @@ def test_cycles_denoiser_and_other_view_layers_are_left_as_the_artist_set_them()
     actions = {a.name for a in bpy.data.actions}
     operators.run_execute("sandscape.add_post_effects")  # again: the keys' action is reused
     assert {a.name for a in bpy.data.actions} == actions
-    settings.use_god_rays = False  # nothing left: the tree goes, the artist's pass stays
+    settings.use_god_rays = settings.use_sun_glow = False  # nothing left: the tree goes
+    # (the artist's pass stays)
     operators.run_execute("sandscape.add_post_effects")
     assert scene.compositing_node_group is None and main.use_pass_environment
 

@@ -97,11 +97,13 @@ def test_dark_glints_idle_rays_and_bounces(sandscape, wasteful_demo):
     lines = run(dry_run=False)
     assert any("glint strength 0" in line for line in lines)
     assert any("God rays removed" in line and "out of view" in line for line in lines)
+    assert any("Sun glow removed" in line and "out of view" in line for line in lines)
     assert any("Volume bounces 2 -> 0" in line for line in lines)
     material = terrain.active_material
     output = next(n for n in material.node_tree.nodes if n.bl_idname == "ShaderNodeOutputMaterial")
     assert output.inputs["Surface"].links[0].from_node == sandscape.addon.sand.look_node(material)
     assert sandscape.addon.sun_screen.rays_node(scene.compositing_node_group) is None
+    assert scene.compositing_node_group.nodes.get(sandscape.addon.post_glow.GLOW) is None
     assert scene.cycles.volume_bounces == 0
 
 

@@ -64,7 +64,7 @@ def test_rays_appear_only_with_the_sun_in_front(desert):
 
 
 def test_switched_off_effects_are_absent(desert, sandscape):
-    own, post = sandscape.addon.ownership, sandscape.addon.post
+    own, post, post_glow = sandscape.addon.ownership, sandscape.addon.post, sandscape.addon.post_glow
     settings = desert.sandscape_post
     bpy.ops.sandscape.add_post_effects()
     tree = desert.compositing_node_group
@@ -80,7 +80,11 @@ def test_switched_off_effects_are_absent(desert, sandscape):
     settings.use_blur, settings.use_god_rays = False, True
     bpy.ops.sandscape.add_post_effects()
     assert tree_groups(tree) == {"Sandscape God Rays", "Sandscape Sun Place"}
+    assert own.node(tree, post_glow.GLOW) is not None
     settings.use_god_rays = False
+    bpy.ops.sandscape.add_post_effects()
+    assert tree_groups(tree) == set() and own.node(tree, post_glow.GLOW) is not None
+    settings.use_sun_glow = False
     bpy.ops.sandscape.add_post_effects()
     assert desert.compositing_node_group is None
     assert not [g for g in bpy.data.node_groups if g.get("sandscape_compositor")]
@@ -93,7 +97,7 @@ def test_a_users_compositor_is_kept_and_restored(desert):
     assert desert.compositing_node_group != theirs and theirs.use_fake_user
     assert desert.compositing_node_group["replaced_tree"] == "Their Grade"
     settings = desert.sandscape_post
-    settings.use_denoise = settings.use_blur = settings.use_god_rays = False
+    settings.use_denoise = settings.use_blur = settings.use_god_rays = settings.use_sun_glow = False
     bpy.ops.sandscape.add_post_effects()
     assert desert.compositing_node_group == theirs
 

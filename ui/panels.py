@@ -155,6 +155,7 @@ POST_SECTIONS = (
     ("Gated Blur", ("use_blur", "blur_threshold")),
     ("God Rays", ("use_god_rays", "samples", "ray_density", "ray_weight", "ray_decay", "ray_exposure",
                   "disc_radius", "fade")),
+    ("Sun Glow", ("use_sun_glow", "glow_strength")),
 )
 
 
