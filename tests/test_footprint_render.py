@@ -1,5 +1,5 @@
-"""Rendered proof: the displaced sand sits the set depth lower at print centres, and only
-once the walker has passed.
+"""Rendered proof: the displaced sand sits the set depth lower under each print's heel, and only
+once its foot has landed.
 
 An orthographic camera looks straight down on a flat terrain; the material's surface is
 swapped for an emission of the shading point's world Z (+1), a position pass of the
@@ -46,7 +46,9 @@ def painted_walk():
     points = next(o for o in bpy.data.objects if o.get("sandscape_object") == "footprints")
     co = np.array([v.co for v in points.data.vertices])
     births = np.array([a.value for a in points.data.attributes["birth_frame"].data])
-    col, row = scenes.project(camera, co, SIZE, SIZE)
+    # The heel's circle centre: a foot presses its heel (and its ball) to the set depth.
+    heel = co + (-0.27 / 2 + 0.75 * 0.10 / 2, 0.0, 0.0)
+    col, row = scenes.project(camera, heel, SIZE, SIZE)
     return scene, col.astype(int), row.astype(int), births
 
 
@@ -62,11 +64,11 @@ def test_prints_sink_by_the_set_depth(painted_walk):
     assert np.abs(z + DEPTH).max() < TOLERANCE, z
 
 
-def test_a_print_appears_only_when_the_walker_passes(painted_walk):
+def test_a_print_appears_only_when_its_foot_lands(painted_walk):
     scene, col, row, births = painted_walk
-    middle = 2  # born at frame 15.0 (x = -0.1 m)
-    assert births[middle] == pytest.approx(15.0)
-    before = heights(scene, 14, col, row)
-    after = heights(scene, 15, col, row)
+    middle = 2  # passed at frame 15.0 (x = -0.1 m), born as its foot lands a quarter stride before
+    assert births[middle] == pytest.approx(15.0 - 0.25 * 0.7 / 0.1)
+    before = heights(scene, 13, col, row)
+    after = heights(scene, 14, col, row)
     assert abs(before[middle]) < TOLERANCE and abs(after[middle] + DEPTH) < TOLERANCE
     assert abs(before[0] + DEPTH) < TOLERANCE and abs(after[-1]) < TOLERANCE  # older shown, later not yet

@@ -8,6 +8,7 @@ import bpy
 import numpy as np
 import pytest
 
+from core import footprints as fp
 from devtools import operators, readback, scenes
 from devtools.rigs import NAMES, RUN_PLANTS, expected_prints, walking_rig
 
@@ -153,15 +154,21 @@ def test_a_run_leaves_longer_prints_deepest_at_the_toe():
 
     frame = np.array(next(o for o in bpy.data.objects if o.get("sandscape_object") == "print_frame")
                      .matrix_world.translation)
+    # The foot's floor (deepest under heel and ball) times the run's tilt, at +-8 cm.
+    sole = fp.Sole(arch=fp.FOOT_ARCH, waist=fp.FOOT_WAIST)
+
+    def floor_ratio(along):
+        return float(fp.floor_depth(along, sole) / fp.floor_depth(-along, sole))
+
     for index in np.flatnonzero(running):
         x, y = co[index, :2] - frame[:2]
         along = 0.08 / 1.25  # 8 cm toward the toe in the world is this far along the unstretched sole
         ratio = depth_at(x + 0.08, y) / depth_at(x - 0.08, y)
-        expected = (1 + 0.4 * along / 0.135) / (1 - 0.4 * along / 0.135)
+        expected = (1 + 0.4 * along / 0.135) / (1 - 0.4 * along / 0.135) * floor_ratio(along)
         assert ratio == pytest.approx(expected, rel=0.05)
     stop = np.flatnonzero(~running)[0]
     x, y = co[stop, :2] - frame[:2]
-    assert depth_at(x + 0.08, y) == pytest.approx(depth_at(x - 0.08, y), rel=0.02)
+    assert depth_at(x + 0.08, y) / depth_at(x - 0.08, y) == pytest.approx(floor_ratio(0.08), rel=0.02)
 
 
 def test_each_path_walker_keeps_its_own_stride():
