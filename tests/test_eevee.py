@@ -42,6 +42,7 @@ def test_god_rays_shine_from_the_sun_in_eevee(eevee_scene, sandscape):
     air.sun_elevation, air.sun_azimuth, air.density = math.radians(6), 0.0, 0.0
     assert bpy.ops.sandscape.add_atmosphere() == {"FINISHED"}
     scene.sandscape_post.use_blur = scene.sandscape_post.use_denoise = False
+    scene.sandscape_post.use_sun_glow = False  # the rays alone
     assert bpy.ops.sandscape.add_post_effects() == {"FINISHED"}
     assert scene.render.engine == "BLENDER_EEVEE"
     sun = sandscape.addon.atmosphere.scene_sun(scene)
