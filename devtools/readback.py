@@ -141,11 +141,6 @@ def composite_group(group, values, output, resolution):
 
     values: input name -> (H, W, 4) array or a plain value. Returns (H, W, 4), rows bottom-up.
     """
-    scene = cycles_scene(resolution=resolution, samples=1)
-    if scene.camera is None:
-        camera = bpy.data.objects.new("Compositor Camera", bpy.data.cameras.new("Compositor Camera"))
-        scene.collection.objects.link(camera)
-        scene.camera = camera
     tree = bpy.data.node_groups.new("Compositor Probe", "CompositorNodeTree")
     tree.interface.new_socket("Image", in_out="OUTPUT", socket_type="NodeSocketColor")
     node = tree.nodes.new("CompositorNodeGroup")
@@ -159,6 +154,20 @@ def composite_group(group, values, output, resolution):
             node.inputs[name].default_value = value
     out = tree.nodes.new("NodeGroupOutput")
     tree.links.new(node.outputs[output], out.inputs[0])
+    try:
+        return composite_tree(tree, resolution)
+    finally:
+        bpy.data.node_groups.remove(tree)
+
+
+def composite_tree(tree, resolution):
+    """Render with `tree` as the compositor of a scene with nothing in it but a camera (the tree's
+    Image nodes are all there is). Returns (H, W, 4), rows bottom-up."""
+    scene = cycles_scene(resolution=resolution, samples=1)
+    if scene.camera is None:
+        camera = bpy.data.objects.new("Compositor Camera", bpy.data.cameras.new("Compositor Camera"))
+        scene.collection.objects.link(camera)
+        scene.camera = camera
     kept = scene.compositing_node_group
     scene.compositing_node_group = tree
     scene.render.use_compositing = True
@@ -166,7 +175,6 @@ def composite_group(group, values, output, resolution):
         return render(scene)
     finally:
         scene.compositing_node_group = kept
-        bpy.data.node_groups.remove(tree)
 
 
 def _probe_tree(name):

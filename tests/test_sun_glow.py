@@ -28,22 +28,15 @@ def scene_image(sun=True, glint=0.0):
 
 
 def glowing(sandscape, image, strength=1.0):
-    scene = readback.cycles_scene(resolution=(W, H), samples=1)
-    if scene.camera is None:
-        camera = bpy.data.objects.new("Glow Camera", bpy.data.cameras.new("Glow Camera"))
-        scene.collection.objects.link(camera)
-        scene.camera = camera
     tree = bpy.data.node_groups.new("Glow Probe", "CompositorNodeTree")
     tree.interface.new_socket("Image", in_out="OUTPUT", socket_type="NodeSocketColor")
     source = tree.nodes.new("CompositorNodeImage")
     source.image = readback.float_image(image, "Glow Input")
     out = tree.nodes.new("NodeGroupOutput")
     tree.links.new(sandscape.addon.post_glow.add_glow(tree, source.outputs["Image"], strength), out.inputs[0])
-    scene.compositing_node_group, scene.render.use_compositing = tree, True
     try:
-        return readback.render(scene)[..., :3]
+        return readback.composite_tree(tree, (W, H))[..., :3]
     finally:
-        scene.compositing_node_group = None
         bpy.data.node_groups.remove(tree)
 
 
@@ -56,7 +49,8 @@ def test_only_the_sun_glows_and_a_glint_stays_a_pinpoint(sandscape):
     lit = glowing(sandscape, scene_image())
     rows, cols = np.indices((H, W))
     distance = np.hypot(cols - SUN[0], rows - SUN[1])
-    rings = [float(lit[(distance >= lo) & (distance < hi)].mean() - SKY) for lo, hi in ((3, 6), (6, 12), (12, 24))]
+    bands = ((3, 6), (6, 12), (12, 24))
+    rings = [float(lit[(distance >= lo) & (distance < hi)].mean() - SKY) for lo, hi in bands]
     print("glow over the sky at 3-6, 6-12, 12-24 px:", [round(r, 2) for r in rings])
     assert rings[0] > rings[1] > rings[2] > 0.0 and rings[0] > SKY
     # A glint of 50 display whites by the glowing sun: it adds itself and nothing round it.
@@ -71,8 +65,8 @@ def test_the_threshold_follows_the_exposure(sandscape):
     post, glow = sandscape.addon.post, sandscape.addon.post_glow
     scene = bpy.context.scene
     tree = bpy.data.node_groups.new("Glow Tree", "CompositorNodeTree")
-    only_glow = types.SimpleNamespace(use_denoise=False, use_blur=False, use_god_rays=False, use_sun_glow=True,
-                                      glow_strength=1.0)
+    only_glow = types.SimpleNamespace(use_denoise=False, use_blur=False, use_god_rays=False,
+                                      use_sun_glow=True, glow_strength=1.0)
     post.build(tree, only_glow, post.display_white(scene), scene=scene)
     scene.compositing_node_group = tree  # the depsgraph evaluates the drivers of the tree in use
     threshold = tree.nodes[glow.THRESHOLD].outputs[0]
