@@ -219,7 +219,8 @@ def test_walls_stand_at_the_angle_of_repose(depth):
     steepest = math.degrees(math.atan(np.abs(np.diff(profile)).max() / texel))
     print(f"depth {depth * 100:g} cm: wall {fp.wall_width(depth) * 100:.1f} cm wide, "
           f"steepest {steepest:.2f} deg")
-    assert 33.0 <= steepest <= 34.0
+    # The wall's straight part stands at 34 degrees exactly: float32 texels put it 1e-4 either side.
+    assert 33.0 <= steepest <= 34.01
     assert profile.max() == pytest.approx(depth, rel=1e-6)
 
 
