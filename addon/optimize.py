@@ -36,7 +36,7 @@ def decisions(scene):
     as EEVEE's passes are in Cycles."""
     cycles = not for_eevee(scene)
     checks = (_empty_volumes, _empty_world_volume, *((_idle_adaptive_subdivision,) if cycles else ()),
-              _dark_glints, _idle_god_rays, _idle_sun_glow)
+              _dark_glints, _idle_sun_effects)
     found = [decision for check in checks for decision in check(scene)]
     if cycles:
         found.extend(_idle_volume_bounces(scene, found))
@@ -179,31 +179,28 @@ def _bypass(tree, add):
         tree.links.new(source, link.to_socket)
 
 
-def _idle_god_rays(scene):
+def _idle_sun_effects(scene):
+    """The god rays and the sun's glow, when they cannot show: the sun out of view on every frame
+    (found once for both: it may step the frames) or the rays' strength 0."""
     tree = own.scene_compositor(scene)
     rays = sun_screen.rays_node(tree)
-    if rays is None:
+    glow = own.node(tree, post_glow.GLOW)
+    if rays is None and glow is None:
         return
-    reason = None
-    if rays.inputs["Exposure"].default_value == 0 or rays.inputs["Weight"].default_value == 0:
-        reason = "their strength is 0"
-    elif _always_zero(scene):
-        reason = "the sun is out of view on every frame"
-    if reason:
-        yield Decision(f"God rays removed from the compositor: {reason}", lambda s=scene: _drop_rays(s),
-                       IDLE_RAYS, scene)
+    zero_strength = rays is not None and (rays.inputs["Exposure"].default_value == 0
+                                          or rays.inputs["Weight"].default_value == 0)
+    out_of_view = (rays is None or not zero_strength or glow is not None) and _always_zero(scene)
+    reason = "their strength is 0" if zero_strength else "the sun is out of view on every frame"
+    if rays is not None and (zero_strength or out_of_view):
+        yield Decision(f"God rays removed from the compositor: {reason}",
+                       lambda s=scene: _switch_off(s, "use_god_rays"), IDLE_RAYS, scene)
+    if glow is not None and out_of_view:
+        yield Decision("Sun glow removed from the compositor: the sun is out of view on every frame",
+                       lambda s=scene: _switch_off(s, "use_sun_glow"), IDLE_RAYS, scene)
 
 
-def _idle_sun_glow(scene):
-    tree = own.scene_compositor(scene)
-    if tree is None or own.node(tree, post_glow.GLOW) is None or not _always_zero(scene):
-        return
-    yield Decision("Sun glow removed from the compositor: the sun is out of view on every frame",
-                   lambda s=scene: _drop_glow(s), IDLE_RAYS, scene)
-
-
-def _drop_glow(scene):
-    scene.sandscape_post.use_sun_glow = False
+def _switch_off(scene, effect):
+    setattr(scene.sandscape_post, effect, False)
     post.apply_post_effects(scene, scene.sandscape_post)
 
 
@@ -216,11 +213,6 @@ def _always_zero(scene):
     fade_node = own.node(own.scene_compositor(scene), sun_screen.PLACE)
     fade = fade_node.inputs["Fade"].default_value if fade_node is not None else scene.sandscape_post.fade
     return all(intensity == 0 for *_, intensity in sun_screen.sun_curve(scene, sun, fade))
-
-
-def _drop_rays(scene):
-    scene.sandscape_post.use_god_rays = False
-    post.apply_post_effects(scene, scene.sandscape_post)
 
 
 def _idle_volume_bounces(scene, found):
