@@ -2,9 +2,9 @@
 where a render alone shows the sun as a small hard dot.
 
 The compositor's Fog Glow on light above GLOW_THRESHOLD times the display white: the sun's disc
-only. The sky round it stays below (about 13x white at the demo's sun) and so do the sand's glints,
-which stay pinpoints. The threshold follows the exposure by a simple-expression driver, as the god
-rays' display white does, so a render farm without Sandscape renders the same.
+only. The bright sky round it stays below, and so do the sand's glints, which stay pinpoints.
+The threshold follows the exposure by a simple-expression driver, as the god rays' display white
+does, so a render farm without Sandscape renders the same.
 """
 
 from ..node_groups import helper as h
