@@ -34,7 +34,7 @@ AIR = {"density": 0.003, "dust_density": 0.002, "margin": 20.0, "visibility": 20
 # Cumulus based at 1.5 km: the 6 degree sun reaches that height 14 km off, past the 8 km layer.
 CLOUDS = {"coverage": 0.4, "seed": 2, "base": 1500.0, "thickness": 1200.0, "step": 400.0, "voxel": 50.0,
           "reach": 8000.0}
-PRINTS = {"depth": 0.05, "rim": 0.006}  # metres: loose dry sand, a low soft rim
+PRINTS = {"depth": 0.04, "rim": 0.006}  # metres: loose dry sand, a low soft rim
 SAND = {"Threshold": 0.985, "Glint Size": 0.012, "Facing Power": 4.0, "Strength": 60.0, "Seed": 1.0}
 
 

@@ -137,11 +137,14 @@ def read_points(obj):
 
 
 def print_axes(points):
-    """Forward and lateral axes of each print, projected onto the frame's XY plane: (N, 2) each."""
+    """Forward and lateral axes of each print, projected onto the frame's XY plane: (N, 2) each.
+    The lateral axis points to the foot's inner side, where the painter's sole has its arch: to
+    the right of a left foot (side +1), to the left of a right or unknown one."""
     heading = points["heading"]
     forward = np.stack([np.cos(heading), np.sin(heading), np.zeros_like(heading)], axis=1)
     forward, lateral = paths.surface_frames(forward, points["surface_normal"])
-    return forward[:, :2], lateral[:, :2]
+    inner = np.where(points["side"] > 0, -1.0, 1.0)[:, None]
+    return forward[:, :2], inner * lateral[:, :2]
 
 
 # ---------------------------------------------------------------- emit and paint
@@ -213,7 +216,7 @@ def _walker_steps(scene, settings, walker, chosen, frames, progress=None, stride
     positions = sample_walker(scene, walker, frames, progress)
     try:
         steps = paths.plan_steps(positions, frames, settings.stride * stride_scale,
-                                 settings.stance * stride_scale)
+                                 settings.stance * stride_scale, toe_out=paths.TOE_OUT)
     except paths.PathError as error:
         raise FootprintError(f"'{walker.name}': {error} ({start}..{end})") from error
     steps["birth"] = steps["landing"]  # a print appears as its foot lands, as a rig's does

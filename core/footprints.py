@@ -7,10 +7,10 @@ Channels (the numpy twin of what node group "Sandscape Footprint Height" reads):
   A  sole coverage, 0..1: where any sole pressed the sand (the owner test uses it)
 
 A print is a sole outline (heel circle, toe circle, tangent lines between them: an uneven
-capsule, optionally waisted at the arch) pressed into a floor (flat, or deepest under heel and
-ball), a wall outside the outline up to the undisturbed sand (dry sand crumbles there to its
-angle of repose, so the hollow is wider at the top than the sole) and a low rim bump beyond the
-wall's top.
+capsule, optionally waisted on its inner side at the arch) pressed into a floor (flat, or
+deepest under heel and ball), a wall outside the outline up to the undisturbed sand (dry sand
+crumbles there to its angle of repose, so the hollow is wider at the top than the sole) and a
+low rim bump beyond the wall's top.
 Edges are never narrower than about a texel, so the image carries no aliasing steps.
 
 Composition, per texel, in birth order (it is associative, so prints go in chunks):
@@ -35,7 +35,8 @@ WINDWARD_SPEEDUP = 2.0  # the wind's fractional speed-up per unit of windward gr
 WALL_ROUNDING = 0.2  # share of the wall, at its foot and at its top, that curves into the flat sand
 WALL_STEEPNESS = 1.0 / (1.0 - WALL_ROUNDING)  # the wall's straight part's slope over its mean slope
 FOOT_ARCH = 0.6  # a foot presses its arch this deep against its heel and ball
-FOOT_WAIST = 0.7  # the sole's width at its arch against a straight outline's
+FOOT_WAIST = 0.35  # the sole's inner half-width at its arch against a straight outline's: the
+# outer edge of a foot's print runs straight, its inner edge curves in at the arch
 
 
 class Sole:
@@ -44,8 +45,8 @@ class Sole:
     edge: width of the wall from the sole's outline out to the undisturbed sand (wall_width
     gives the one that stands at the angle of repose for a depth).
     arch: the floor's depth between heel and ball against theirs (1: a flat floor; FOOT_ARCH).
-    waist: the outline's width midway from heel to toe against a straight capsule's (1: none;
-    FOOT_WAIST)."""
+    waist: the outline's inner half-width (+b, toward the body's midline) midway from heel to
+    toe against a straight capsule's (1: none; FOOT_WAIST); the outer half stays straight."""
 
     __slots__ = ("length", "width", "heel_ratio", "edge", "rim_width", "arch", "waist")
 
@@ -122,9 +123,13 @@ def sole_distance(a, b, sole):
     r1, r2 = sole.heel_radius(), sole.toe_radius()
     heel = -sole.length / 2 + r1
     h = sole.length / 2 - r2 - heel
-    # A waist: the lateral offset stretched about the arch, the distance shrunk back by the same
-    # factor (so the wall stays as wide there, at the angle of repose).
-    stretch = 1.0 + (1.0 / sole.waist - 1.0) * _arch_hump(a, sole) if sole.waist < 1 else 1.0
+    # A waist on the inner side: the lateral offset stretched about the arch, the distance shrunk
+    # back by the same factor (so the wall stays as wide there, at the angle of repose). At b = 0
+    # the stretch jumps, but only inside the outline, where any negative distance presses fully.
+    if sole.waist < 1:
+        stretch = np.where(b > 0, 1.0 + (1.0 / sole.waist - 1.0) * _arch_hump(a, sole), 1.0)
+    else:
+        stretch = 1.0
     px = np.abs(b) * stretch
     py = a - heel
     if h <= 1e-12:  # a round sole
@@ -213,7 +218,9 @@ def paint(centres, forward, lateral, births, depth_scales, region, sole=None, fr
 
     centres (N, 2): print centres in the painting plane (the print frame's X and Y: world-aligned).
     forward, lateral (N, 2): the print's unit forward and lateral axes projected onto the
-        plane (on flat ground, (cos h, sin h) and (-sin h, cos h); on a slope, shorter).
+        plane (on flat ground, (cos h, sin h) and +-(-sin h, cos h); on a slope, shorter). The
+        lateral axis points to the foot's inner side (a waisted sole narrows there): for a left
+        foot, to the right of its heading.
     births (N,): frames; depth_scales (N,): per-print multipliers of depth and rim (> 0).
     toe_bias (N,) or scalar: a print's depth runs from (1 - bias) at the heel to (1 + bias) at
         the toe (a run pushes off from the forefoot); 0 presses evenly.

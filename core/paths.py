@@ -14,6 +14,9 @@ LEFT, RIGHT = 1, -1
 # pendulum has the foot down on the print from there (a print that waited for the hip would
 # appear under a foot already standing in the sand).
 LANDING_LEAD = 0.25
+# A walking adult's foot points about 5-10 degrees out of the line of walk (its progression
+# angle): the left print turned left, the right turned right, so the two read as a pair.
+TOE_OUT = np.radians(7.0)
 
 
 class PathError(ValueError):
@@ -54,7 +57,7 @@ def horizontal_tangents(positions):
     return tangent[nearest] if valid.size < len(tangent) else tangent
 
 
-def plan_steps(positions, frames, stride, stance, first_side=LEFT):
+def plan_steps(positions, frames, stride, stance, first_side=LEFT, toe_out=0.0):
     """Footstep contacts along a sampled walker path.
 
     positions: (F, 3) world positions at `frames` (F,), in order of time.
@@ -63,6 +66,8 @@ def plan_steps(positions, frames, stride, stance, first_side=LEFT):
       forward (N, 3): unit horizontal tangent (the tangent linearly interpolated between
                       samples and renormalised, so a circle sampled per frame keeps < 0.01 deg)
       heading (N,):   atan2 of forward, radians about +Z
+    toe_out: radians each foot points out of the line of walk (the left foot turned left, the
+    right turned right; TOE_OUT for a walking adult), applied to forward and heading.
       side (N,):      +1 left, -1 right, alternating
       birth (N,):     frame at which the walker passes the step (interpolated along the arc)
       landing (N,):   frame at which its foot lands, LANDING_LEAD of a stride earlier (the
@@ -90,10 +95,12 @@ def plan_steps(positions, frames, stride, stance, first_side=LEFT):
     forward = _unit(forward, fallback=tangents[0])
     lateral = np.cross(UP, forward)
     side = np.where(np.arange(count) % 2 == 0, first_side, -first_side)
+    turn = (side * toe_out)[:, None]
+    toes = forward * np.cos(turn) + lateral * np.sin(turn)
     return {
         "contact": point + lateral * (side * stance * 0.5)[:, None],
-        "forward": forward,
-        "heading": np.arctan2(forward[:, 1], forward[:, 0]),
+        "forward": toes,
+        "heading": np.arctan2(toes[:, 1], toes[:, 0]),
         "side": side.astype(np.int32),
         "birth": np.interp(s, arc, frames),
         "landing": np.interp(np.maximum(s - LANDING_LEAD * stride, 0.0), arc, frames),

@@ -204,6 +204,13 @@ def test_heading_follows_a_circle_sampled_per_frame():
     expected = centre_angle + np.pi / 2
     error = np.angle(np.exp(1j * (steps["heading"] - expected)))
     assert np.abs(np.degrees(error)).max() < 0.01
+    # Toed out: the left foot (side +1) turns left of the tangent, the right turns right, unit.
+    toed = paths.plan_steps(positions, frames, 0.7, 0.2, toe_out=paths.TOE_OUT)
+    turn = np.angle(np.exp(1j * (toed["heading"] - steps["heading"])))
+    np.testing.assert_allclose(turn, steps["side"] * paths.TOE_OUT, atol=1e-9)
+    np.testing.assert_allclose(toed["forward"][:, :2], np.stack([np.cos(toed["heading"]),
+                                                                 np.sin(toed["heading"])], 1), atol=1e-9)
+    np.testing.assert_array_equal(toed["contact"], steps["contact"])
 
 
 @pytest.mark.parametrize("depth", [0.01, 0.05, 0.12])
@@ -278,8 +285,9 @@ def test_eevee_levels_halve_the_longest_kept_edge_to_the_target():
 
 def test_a_foots_print_is_waisted_and_deepest_under_heel_and_ball():
     """A foot's sole (FOOT_ARCH, FOOT_WAIST): the floor is the set depth under the heel's and the
-    toe's circle centres and FOOT_ARCH of it midway between; the outline is FOOT_WAIST as wide
-    there as a straight capsule's; its walls still stand no steeper than the angle of repose."""
+    toe's circle centres and FOOT_ARCH of it midway between; there the outline's inner half (+b,
+    the lateral axis) is FOOT_WAIST as wide as a straight capsule's and its outer half unchanged;
+    its walls still stand no steeper than the angle of repose."""
     texel, depth = 0.001, 0.04
     plain = fp.Sole(edge=fp.wall_width(depth), rim_width=0.0)
     foot = fp.Sole(edge=fp.wall_width(depth), rim_width=0.0, arch=fp.FOOT_ARCH, waist=fp.FOOT_WAIST)
@@ -294,8 +302,10 @@ def test_a_foots_print_is_waisted_and_deepest_under_heel_and_ball():
         col = int(np.argmin(np.abs(xs - at)))
         assert images[1][row, col, 0] == pytest.approx(expected, abs=2e-3)
     col = int(np.argmin(np.abs(xs - middle)))
-    widths = [(image[:, col, 3] >= 1.0 - 1e-6).sum() * texel for image in images]
-    assert widths[1] / widths[0] == pytest.approx(fp.FOOT_WAIST, abs=2 * texel / widths[0])
+    for half in (slice(row, None), slice(None, row)):  # inner (+y), outer (-y) from the centre row
+        widths = [(image[half, col, 3] >= 1.0 - 1e-6).sum() * texel for image in images]
+        expected = fp.FOOT_WAIST if half.start == row else 1.0
+        assert widths[1] / widths[0] == pytest.approx(expected, abs=2 * texel / widths[0])
     across = depth * images[1][:, col, 0].astype(np.float64)
     along = depth * images[1][row, :, 0].astype(np.float64)
     steepest = max(np.abs(np.diff(profile)).max() for profile in (across, along)) / texel

@@ -11,6 +11,7 @@ import pytest
 from mathutils import Vector
 from mathutils.bvhtree import BVHTree
 
+from core import paths
 from devtools import scenes
 
 RADIUS, FRAMES = 5.0, (1, 121)
@@ -53,7 +54,9 @@ def test_prints_lie_on_the_surface_and_follow_the_tangent(surface):
     assert len(co) == int(RADIUS * math.pi / 0.5) + 1
     assert np.abs(co[:, 2] - height(co[:, 0], co[:, 1])).max() < 1e-3  # on the surface within 1 mm
     angle = path_angle(co)
-    error = np.angle(np.exp(1j * (read(points, "heading") - (angle + math.pi / 2))))
+    # Each foot's toes turn TOE_OUT out of the tangent: the left (side +1) to the left.
+    toes = read(points, "side") * paths.TOE_OUT
+    error = np.angle(np.exp(1j * (read(points, "heading") - (angle + math.pi / 2 + toes))))
     assert np.degrees(np.abs(error)).max() < 1.0
     # Each is born as its foot lands, a quarter stride before the walker passes it (the first on
     # the first frame): within a hundredth of a frame of the path's formula.
