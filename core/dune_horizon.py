@@ -11,6 +11,10 @@ dunes where a camera in the field can make them out.
   loop cannot hold dunes smaller than its step; sampled raw they would alias into spikes), and
   lowered by the Earth's curvature beyond the field (d^2 / 2R): seen from the ground the land
   then ends at a true horizon, before the ring's outer edge.
+- Beyond DRAA_START_M the land swells into draa, the megadunes that dune fields sit on
+  (spacing over 500 m, heights of tens to hundreds of metres: Lancaster, Dune Morphology and
+  Dynamics): ridges across the wind with saddles, DRAA_RELIEF times the field's relief, so the
+  horizon is a line of far crests fading into the haze rather than a ruler-straight edge.
 - Consecutive loops are zipped into triangles by their positions along the loop (side index
   plus the fraction along that side, so corners meet corners).
 """
@@ -24,10 +28,33 @@ ANGULAR_STEP = 0.0125  # within NEAR_M of the field: dunes there still show from
 NEAR_M = 2000.0
 FAR_ANGULAR_STEP = 0.05  # beyond: dunes under a pixel tall from the ground, and the haze
 BLUR_PER_STEP = 0.4
+DRAA_SPACING_M = 1500.0  # crest to crest, downwind
+DRAA_RELIEF = 8.0  # draa crest height over the field's own crest-to-trough relief
+DRAA_START_M, DRAA_FULL_M = 250.0, 1000.0  # beyond the field's edge: flat to full height between
+DRAA_WANDER = 1.2  # radians the crests' phase wanders along them, over DRAA_WANDER_SPACINGS
+DRAA_WANDER_SPACINGS = 2.3
+DRAA_SADDLE = 0.5  # crests dip this share of their height at saddles, DRAA_SADDLE_SPACINGS apart:
+DRAA_SADDLE_SPACINGS = 0.6  # seen along its length a straight crest would draw a level line
 
 
 def angular_step(offset):
     return ANGULAR_STEP if offset <= NEAR_M else FAR_ANGULAR_STEP
+
+
+def draa(x, y, offset, wind_angle, relief):
+    """Height in metres the draa add at (x, y) metres, `offset` beyond the field's edge: 0 up to
+    DRAA_START_M, easing in to ridges from 0 to DRAA_RELIEF * relief by DRAA_FULL_M. Crests run
+    across the wind, wandering and dipping at saddles along their length; never below the land
+    under them."""
+    along = x * math.cos(wind_angle) + y * math.sin(wind_angle)
+    across = y * math.cos(wind_angle) - x * math.sin(wind_angle)
+    t = np.clip((np.asarray(offset, np.float64) - DRAA_START_M) / (DRAA_FULL_M - DRAA_START_M), 0.0, 1.0)
+    ease = t * t * (3.0 - 2.0 * t)
+    wander = DRAA_WANDER * np.sin(2.0 * math.pi * across / (DRAA_WANDER_SPACINGS * DRAA_SPACING_M))
+    ridge = 0.5 * (1.0 + np.sin(2.0 * math.pi * along / DRAA_SPACING_M + wander))
+    saddles = 1.0 - DRAA_SADDLE * 0.5 * (1.0 + np.sin(2.0 * math.pi * across / (DRAA_SADDLE_SPACINGS
+                                                                                 * DRAA_SPACING_M)))
+    return ease * DRAA_RELIEF * max(float(relief), 0.0) * ridge * saddles
 
 
 def loop_offsets(cell, reach):
@@ -83,6 +110,7 @@ def ring(surface, width, depth, cell, reach, boundary):
     count_x = max(int(round(width / cell)), 1)
     count_y = max(int(round(depth / cell)), 1)
     offsets = loop_offsets(cell, reach)
+    relief = float(np.ptp(surface.levels[0]))
     x, y, position = rectangle_loop(width / 2, depth / 2, count_x, count_y)
     points = [np.stack([np.asarray(c, np.float64) for c in boundary], -1)]
     previous = (np.arange(len(x)), position)
@@ -95,6 +123,7 @@ def ring(surface, width, depth, cell, reach, boundary):
         ny = min(max(int(math.ceil(2 * half_y / along)), 1), count_y)
         x, y, position = rectangle_loop(half_x, half_y, nx, ny)
         z = surface.heights(x, y, blur=BLUR_PER_STEP * max(step, along))
+        z = z + draa(x, y, offset, surface.wind_angle, relief)
         points.append(np.stack([x, y, z - offset**2 / (2.0 * EARTH_RADIUS_M)], -1))
         indices = np.arange(start, start + len(x))
         triangles.append(zip_loops(previous[0], previous[1], indices, position))
