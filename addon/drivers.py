@@ -7,6 +7,10 @@ marked invalid and Blender skips it until the file is reloaded or the driver edi
 re-enables ours once their targets are there again.
 """
 
+# The linear value the view shows as white, from a variable `exposure` on the scene's
+# view_settings.exposure: what the compositor's effects scale by and threshold against.
+WHITE_EXPRESSION = "pow(2, -exposure)"
+
 
 def drive(owner, path, expression, variables, index=-1):
     """Drive owner.path (index: one element of an array) by a simple expression.

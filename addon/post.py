@@ -30,11 +30,8 @@ SPARKLE_BAR = (1.5, 3.0)  # its glint light
 DENOISED_BAR = (1.1, 1.3)  # its denoised self
 
 
-WHITE_EXPRESSION = "pow(2, -exposure)"
-
-
 def display_white(scene):
-    """The linear value the view shows as white: 2^-exposure (WHITE_EXPRESSION)."""
+    """The linear value the view shows as white: 2^-exposure (drivers.WHITE_EXPRESSION)."""
     return 2.0 ** -scene.view_settings.exposure
 
 
@@ -92,7 +89,7 @@ def build(tree, settings, white=1.0, image_denoised=False, scene=None, engine=pa
         scale = h.add_node(tree, "ShaderNodeValue", name=WHITE, label="Display White (driven)")
         scale.outputs[0].default_value = white
         if scene is not None:  # 2^-exposure, whatever the exposure becomes
-            drivers.drive(scale.outputs[0], "default_value", WHITE_EXPRESSION,
+            drivers.drive(scale.outputs[0], "default_value", drivers.WHITE_EXPRESSION,
                           [("exposure", "SCENE", scene, "view_settings.exposure")])
         shown = h.vector_math(tree, "SCALE", rays.outputs["Rays"], label="× Display White")
         h.link(tree, scale.outputs[0], shown.inputs["Scale"])

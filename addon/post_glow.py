@@ -14,7 +14,7 @@ GLOW = "Sandscape Sun Glow"
 THRESHOLD = "Sandscape Glow Threshold"
 GLOW_THRESHOLD = 100.0  # display whites: far above the sky and the glints, far below the sun's disc
 GLOW_SIZE = 0.6  # the Glare node's size: the glow's reach, as a share of the frame
-THRESHOLD_EXPRESSION = f"{GLOW_THRESHOLD:g} * pow(2, -exposure)"
+THRESHOLD_EXPRESSION = f"{GLOW_THRESHOLD:g} * {drivers.WHITE_EXPRESSION}"
 
 
 def add_glow(tree, image, strength, white=1.0, scene=None):

@@ -69,17 +69,17 @@ def ensure_limbs(walker, material, scale, stance):
     for name, (bottom, top, length, side, pivot) in LIMBS.items():
         limb = found.get(name)
         title = "Sandscape Walker " + name.replace("_", " ").title()
+        if limb is None or limb.get(SHAPE_KEY) != SHAPE:  # missing, or an older walker's shape
+            mesh = _limb_mesh(title, bottom, top, length, scale)
+            mesh.materials.append(material)
         if limb is None:
-            limb = bpy.data.objects.new(title, _limb_mesh(title, bottom, top, length, scale))
+            limb = bpy.data.objects.new(title, mesh)
             own.mark(limb, own.OBJECT_KEY, own.WALKER_LIMB, **{LIMB_KEY: name})
-            limb.data.materials.append(material)
             for collection in collections:
                 collection.objects.link(limb)
             found[name] = limb
-        elif limb.get(SHAPE_KEY) != SHAPE:  # an older walker's limb: its mesh gets the new shape
-            old = limb.data
-            limb.data = _limb_mesh(title, bottom, top, length, scale)
-            limb.data.materials.append(material)
+        elif limb.get(SHAPE_KEY) != SHAPE:
+            old, limb.data = limb.data, mesh
             if old.users == 0:
                 bpy.data.meshes.remove(old)
         limb[SHAPE_KEY] = SHAPE
