@@ -21,6 +21,7 @@ from mathutils import Matrix
 
 from ..core import footprints as painter
 from ..core import paths
+from ..core import sole as sole_shape
 from ..node_groups import helper as h
 from ..node_groups import print_markers
 from . import compat, evaluation, rig_feet, sand, shot, units
@@ -151,10 +152,12 @@ def print_axes(points):
 
 def sole_from(settings):
     """A foot's sole (waisted, deepest under heel and ball), its wall as wide as dry sand crumbles
-    at the set depth (all in scene units)."""
-    return painter.Sole(length=settings.foot_length, width=settings.foot_width,
-                        edge=painter.wall_width(settings.depth), rim_width=settings.rim_width,
-                        arch=painter.FOOT_ARCH, waist=painter.FOOT_WAIST)
+    at the set depth, slumped across the outline and lumpy (all in scene units)."""
+    edge = sole_shape.wall_width(settings.depth)
+    return sole_shape.Sole(length=settings.foot_length, width=settings.foot_width,
+                        edge=edge, rim_width=settings.rim_width,
+                        arch=sole_shape.FOOT_ARCH, waist=sole_shape.FOOT_WAIST,
+                        inside=sole_shape.SLUMPED, crumble=sole_shape.CRUMBLE * edge)
 
 
 def frame_range(scene, settings):

@@ -161,7 +161,7 @@ def sandscape_rows(resolutions):
     for resolution in resolutions:
         settings.resolution = resolution
         operator = median_time(lambda: bpy.ops.sandscape.paint_footprints(), repeats=3)
-        points_obj = sandscape.addon.footprints.find_object("footprints", terrain)
+        points_obj = sandscape.addon.footprints.find_object(bpy.context.scene, "footprints", terrain)
         points = sandscape.addon.footprints.read_points(points_obj)
         assert len(points["co"]) == PRINTS
         sole = sandscape.addon.footprints.sole_from(settings)

@@ -6,11 +6,7 @@ Channels (the numpy twin of what node group "Sandscape Footprint Height" reads):
   B  birth frame of the print that owns the texel, normalised to the frame range (0..1)
   A  sole coverage, 0..1: where any sole pressed the sand (the owner test uses it)
 
-A print is a sole outline (heel circle, toe circle, tangent lines between them: an uneven
-capsule, optionally waisted on its inner side at the arch) pressed into a floor (flat, or
-deepest under heel and ball), a wall outside the outline up to the undisturbed sand (dry sand
-crumbles there to its angle of repose, so the hollow is wider at the top than the sole) and a
-low rim bump beyond the wall's top.
+The print's shape (outline, floor, wall, rim) is in sole.py.
 Edges are never narrower than about a texel, so the image carries no aliasing steps.
 
 Composition, per texel, in birth order (it is associative, so prints go in chunks):
@@ -26,134 +22,12 @@ or per print.
 import numpy as np
 
 from .shaping import wind_direction
+from .sole import REPOSE, RIM_LUMPS, Sole, arch_hump, crumble_noise, sole_distance, sole_profile
 
 F32 = np.float32
 LOG_FLOOR = -69.0  # log(1e-30): a fully pressed texel keeps no rim, without log(0)
 CHUNK_ENTRIES = 1 << 22  # texel-print pairs per batch: bounds memory at any print count
-REPOSE = np.radians(34.0)  # dry quartz sand's angle of repose: the steepest a crumbled wall stands
 WINDWARD_SPEEDUP = 2.0  # the wind's fractional speed-up per unit of windward gradient
-WALL_ROUNDING = 0.2  # share of the wall, at its foot and at its top, that curves into the flat sand
-WALL_STEEPNESS = 1.0 / (1.0 - WALL_ROUNDING)  # the wall's straight part's slope over its mean slope
-FOOT_ARCH = 0.6  # a foot presses its arch this deep against its heel and ball
-FOOT_WAIST = 0.35  # the sole's inner half-width at its arch against a straight outline's: the
-# outer edge of a foot's print runs straight, its inner edge curves in at the arch
-
-
-class Sole:
-    """Sole shape and profile, in metres. Immutable; `reach` bounds a stamp's influence.
-
-    edge: width of the wall from the sole's outline out to the undisturbed sand (wall_width
-    gives the one that stands at the angle of repose for a depth).
-    arch: the floor's depth between heel and ball against theirs (1: a flat floor; FOOT_ARCH).
-    waist: the outline's inner half-width (+b, toward the body's midline) midway from heel to
-    toe against a straight capsule's (1: none; FOOT_WAIST); the outer half stays straight."""
-
-    __slots__ = ("length", "width", "heel_ratio", "edge", "rim_width", "arch", "waist")
-
-    def __init__(self, length=0.27, width=0.10, heel_ratio=0.75, edge=0.012, rim_width=0.04, arch=1.0,
-                 waist=1.0):
-        if not (length > 0 and width > 0 and rim_width >= 0 and edge >= 0):
-            raise ValueError("sole length and width must be > 0, edge and rim width >= 0")
-        if width > length:
-            raise ValueError("sole width must not exceed its length")
-        if not 0 < heel_ratio <= 1:
-            raise ValueError("heel ratio must lie in (0, 1]")
-        if not (0 < arch <= 1 and 0 < waist <= 1):
-            raise ValueError("arch and waist must lie in (0, 1]")
-        self.length, self.width, self.heel_ratio = float(length), float(width), float(heel_ratio)
-        self.edge, self.rim_width = float(edge), float(rim_width)
-        self.arch, self.waist = float(arch), float(waist)
-
-    def centres(self):
-        """Where along the sole (a) the heel circle's and the toe circle's centres lie."""
-        return -self.length / 2 + self.heel_radius(), self.length / 2 - self.toe_radius()
-
-    def toe_radius(self):
-        return self.width / 2
-
-    def heel_radius(self):
-        return self.heel_ratio * self.width / 2
-
-    def edge_width(self, texel):
-        return max(self.edge, texel)
-
-    def rim_band(self, texel):
-        return max(self.rim_width, 2.0 * texel) if self.rim_width > 0 else 0.0
-
-    def reach(self, texel=0.0):
-        """Distance from the print centre beyond which the stamp is exactly zero."""
-        return self.length / 2 + self.edge_width(texel) + self.rim_band(texel)
-
-
-def wall_width(depth, repose=REPOSE):
-    """Width of a wall down `depth` whose straight part stands at the angle of repose."""
-    return WALL_STEEPNESS * max(float(depth), 0.0) / np.tan(repose)
-
-
-def wall_ramp(t, rounding=WALL_ROUNDING):
-    """0 at t <= 0 to 1 at t >= 1: a straight slope whose ends curve (C1) over `rounding` of the
-    width into the flat floor and the flat sand, as a crumbled wall does."""
-    t = np.clip(t, 0.0, 1.0)
-    q = rounding
-    curve = 1.0 / (2.0 * q * (1.0 - q))
-    return np.where(t < q, curve * t * t,
-                    np.where(t > 1.0 - q, 1.0 - curve * (1.0 - t) ** 2, (t - q / 2) / (1.0 - q)))
-
-
-def _arch_hump(a, sole):
-    """0 at the heel's and toe's circle centres (and beyond), 1 midway between them; flat to the
-    second derivative at its ends (a kink there would draw a line across the print's shading)."""
-    heel, toe = sole.centres()
-    u = np.clip((a - heel) / max(toe - heel, 1e-9), 0.0, 1.0)
-    return (4.0 * u * (1.0 - u)) ** 3
-
-
-def floor_depth(a, sole):
-    """The floor's depth along the sole (a forward): 1 under the heel and the ball, `arch` between
-    them, through a smooth dip: a foot's heel and ball carry its weight."""
-    return 1.0 - (1.0 - sole.arch) * _arch_hump(a, sole)
-
-
-def sole_distance(a, b, sole):
-    """Signed distance to the sole outline (negative inside); a forward, b lateral, metres.
-
-    The outline is an uneven capsule from the heel circle (radius r1, centre at
-    a = -L/2 + r1) to the toe circle (r2, at a = L/2 - r2), centred on a = 0.
-    """
-    r1, r2 = sole.heel_radius(), sole.toe_radius()
-    heel = -sole.length / 2 + r1
-    h = sole.length / 2 - r2 - heel
-    # A waist on the inner side: the lateral offset stretched about the arch, the distance shrunk
-    # back by the same factor (so the wall stays as wide there, at the angle of repose). At b = 0
-    # the stretch jumps, but only inside the outline, where any negative distance presses fully.
-    if sole.waist < 1:
-        stretch = np.where(b > 0, 1.0 + (1.0 / sole.waist - 1.0) * _arch_hump(a, sole), 1.0)
-    else:
-        stretch = 1.0
-    px = np.abs(b) * stretch
-    py = a - heel
-    if h <= 1e-12:  # a round sole
-        return np.hypot(px, py) - max(r1, r2)
-    slope = (r1 - r2) / h
-    along = np.sqrt(max(1.0 - slope * slope, 0.0))
-    k = -slope * px + along * py
-    distance = np.where(k < 0, np.hypot(px, py) - r1,
-                        np.where(k > along * h, np.hypot(px, py - h) - r2, along * px + slope * py - r1))
-    return distance / stretch
-
-
-def sole_profile(distance, sole, texel):
-    """Pressed fraction s (1 on the floor inside the outline, falling to 0 across the wall
-    outside it) and rim bump (0..1, peak 1) beyond the wall's top."""
-    wall = sole.edge_width(texel)
-    pressed = 1.0 - wall_ramp(distance / wall)
-    band = sole.rim_band(texel)
-    if band <= 0:
-        return pressed, np.zeros_like(pressed)
-    t = (distance - wall) / band
-    rim = np.where((t > 0) & (t < 1), (4.0 * t * (1.0 - t)) ** 2, 0.0)
-    # A float32 distance a hair short of the band's end leaves ~1e-13: that is outside the stamp.
-    return pressed, np.where(rim > 1e-9, rim, 0.0)
 
 
 class Region:
@@ -237,7 +111,7 @@ def paint(centres, forward, lateral, births, depth_scales, region, sole=None, fr
     toe = np.clip(toe, -1.0, 1.0)
     # Each print's box in the plane: the sole's half-length and half-width plus the wall and the
     # rim band, through its (projected) axes. A square of the full reach would hold twice the texels.
-    band = sole.edge_width(texel) + sole.rim_band(texel)
+    band = sole.outer_band(texel)
     along, across = sole.length / 2 + band, sole.width / 2 + band
     forward_abs = np.abs(np.asarray(forward, np.float64).reshape(-1, 2))
     lateral_abs = np.abs(np.asarray(lateral, np.float64).reshape(-1, 2))
@@ -266,7 +140,16 @@ def _stamp_chunk(flat, region, sole, window, half, prints, centres, inverse, bir
     # Offsets need float64 (texel positions far from the origin); the profile does not.
     a = (m[:, 0] * dx + m[:, 1] * dy).astype(F32)
     b = (m[:, 2] * dx + m[:, 3] * dy).astype(F32)
-    pressed, rim = sole_profile(sole_distance(a, b, sole), sole, texel)
+    hump = arch_hump(a, sole) if sole.arch < 1 or sole.waist < 1 else None
+    distance = sole_distance(a, b, sole, hump)
+    if sole.crumble > 0:
+        x = region.x0 + (col + 0.5) * texel
+        y = region.y0 + (row + 0.5) * texel
+        wander, lumps = crumble_noise(x, y, sole.edge_width(texel))
+        distance = distance + F32(sole.crumble) * wander
+    pressed, rim = sole_profile(distance, sole, texel)
+    if sole.crumble > 0:
+        rim = rim * np.maximum(1.0 + F32(RIM_LUMPS) * lumps, 0.0)
     inside = ((col >= 0) & (col < region.width) & (row >= 0) & (row < region.height)
               & ((pressed > 0) | (rim > 0)))
     rank = np.broadcast_to(np.arange(len(prints))[:, None, None], inside.shape)[inside]
@@ -280,7 +163,7 @@ def _stamp_chunk(flat, region, sole, window, half, prints, centres, inverse, bir
     along = a[inside].astype(np.float64)
     tilt = 1.0 + toe[prints][rank] * np.clip(along / (sole.length / 2), -1.0, 1.0)
     if sole.arch < 1:
-        tilt = tilt * floor_depth(along, sole)
+        tilt = tilt * (1.0 - (1.0 - sole.arch) * hump[inside].astype(np.float64))
     # Group by texel, in birth order within each texel (prints arrive sorted by birth).
     sort = np.argsort(pixel * len(prints) + rank, kind="stable")
     pixel, pressed, rim, scale, birth = pixel[sort], pressed[sort], rim[sort], scale[sort], birth[sort]

@@ -12,7 +12,8 @@ Twin: core.footprints.revealed_height (with Noise Amount 0).
 
 import math
 
-from ..core.footprints import REPOSE, WINDWARD_SPEEDUP
+from ..core.footprints import WINDWARD_SPEEDUP
+from ..core.sole import REPOSE
 from . import helper as h
 
 NAME = "Sandscape Footprint Height"

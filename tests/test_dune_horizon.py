@@ -33,6 +33,8 @@ def test_draa_rise_beyond_the_field_across_the_wind(wind):
     far = offset >= dune_horizon.DRAA_FULL_M
     # Near the field nothing is added (the blur of the coarse loops aside: within the field's relief).
     assert np.abs(added[near]).max() <= 6.0 + 1e-9
+    assert near.sum() > 100
+    assert (dune_horizon.draa(vertices[near, 0], vertices[near, 1], offset[near], wind, 6.0) == 0).all()
     expected = dune_horizon.draa(vertices[far, 0], vertices[far, 1], offset[far], wind, 6.0)
     blurred = land[far] - expected  # what the far loops keep of the field: between trough and crest
     assert blurred.min() >= -1e-6 and blurred.max() <= 6.0 + 1e-6

@@ -12,6 +12,7 @@ import pytest
 
 from core import footprints as fp
 from core import paths
+from core import sole as soles
 
 STRIDE, STANCE = 0.7, 0.2
 TEXEL = 0.005  # metres; the rim peak of a round-ended sole lands on a texel centre
@@ -48,7 +49,7 @@ def texel_of(region, point):
 
 @pytest.fixture
 def painted():
-    sole = fp.Sole(heel_ratio=1.0, edge=3 * TEXEL)  # the wall's top on a texel edge
+    sole = soles.Sole(heel_ratio=1.0, edge=3 * TEXEL)  # the wall's top on a texel edge
     steps, frames = straight_walk()
     forward, lateral = flat_axes(steps["forward"])
     centres = steps["contact"][:, :2]
@@ -118,7 +119,7 @@ def test_birth_channel_reveals_each_print_when_the_walker_passes(painted):
 
 
 def test_toe_is_wider_than_heel_and_points_forward():
-    sole = fp.Sole()  # heel ratio 0.75
+    sole = soles.Sole()  # heel ratio 0.75
     region = fp.Region(-0.25, -0.25, TEXEL, 100, 100)
     for heading in (0.0, 2.0):
         f = np.array([[np.cos(heading), np.sin(heading)]])
@@ -130,7 +131,7 @@ def test_toe_is_wider_than_heel_and_points_forward():
 
 
 def test_a_later_sole_flattens_an_earlier_rim_and_depth_stays_bounded():
-    sole = fp.Sole(heel_ratio=1.0)
+    sole = soles.Sole(heel_ratio=1.0)
     region = fp.Region(-0.4, -0.4, TEXEL, 160, 160)
     forward, lateral = np.array([[1.0, 0.0]] * 2), np.array([[0.0, 1.0]] * 2)
     centres = np.array([[0.0, 0.0], [0.0, 0.08]])  # the second sole lies over the first's rim
@@ -148,7 +149,7 @@ def test_batches_compose_like_one_pass(monkeypatch):
     forward, lateral = flat_axes(steps["forward"])
     centres = steps["contact"][:, :2] * (0.2, 1.0)
     births = steps["birth"]
-    region = fp.fit_region(centres, fp.Sole().reach(), 400, 0.05)
+    region = fp.fit_region(centres, soles.Sole().reach(), 400, 0.05)
     whole = fp.paint(centres, forward, lateral, births, 1.0, region)
     monkeypatch.setattr(fp, "CHUNK_ENTRIES", 500)
     batched = fp.paint(centres, forward, lateral, births, 1.0, region)
@@ -183,7 +184,7 @@ def test_bad_prints_are_skipped_not_painted():
 def test_tiny_resolutions(resolution):
     steps, frames = straight_walk()
     forward, lateral = flat_axes(steps["forward"])
-    region = fp.fit_region(steps["contact"][:, :2], fp.Sole().reach(), resolution)
+    region = fp.fit_region(steps["contact"][:, :2], soles.Sole().reach(), resolution)
     image = fp.paint(steps["contact"][:, :2], forward, lateral, steps["birth"], 1.0, region)
     assert image.shape[1] == resolution and np.isfinite(image).all() and image.max() <= 1.0
 
@@ -218,13 +219,13 @@ def test_walls_stand_at_the_angle_of_repose(depth):
     """Dry sand crumbles: across the wall the painted depth falls no steeper than 34 degrees,
     and reaches it (a wall of the sole's own outline would stand at 76 degrees for 5 cm)."""
     texel = 0.002
-    sole = fp.Sole(heel_ratio=1.0, edge=fp.wall_width(depth), rim_width=0.0)
+    sole = soles.Sole(heel_ratio=1.0, edge=soles.wall_width(depth), rim_width=0.0)
     region = fp.Region(-0.3, -0.01, texel, 300, 10)
     image = fp.paint(np.array([[0.0, 0.0]]), np.array([[1.0, 0.0]]), np.array([[0.0, 1.0]]),
                      np.array([1.0]), 1.0, region, sole, (0.0, 2.0))
     profile = depth * image[5, :, 0].astype(np.float64)  # along the sole's length, through its centre
     steepest = math.degrees(math.atan(np.abs(np.diff(profile)).max() / texel))
-    print(f"depth {depth * 100:g} cm: wall {fp.wall_width(depth) * 100:.1f} cm wide, "
+    print(f"depth {depth * 100:g} cm: wall {soles.wall_width(depth) * 100:.1f} cm wide, "
           f"steepest {steepest:.2f} deg")
     # The wall's straight part stands at 34 degrees exactly: float32 texels put it 1e-4 either side.
     assert 33.0 <= steepest <= 34.01
@@ -234,7 +235,7 @@ def test_walls_stand_at_the_angle_of_repose(depth):
 def test_a_runs_print_is_deepest_at_the_toe():
     """toe_bias b: depth (1 + b a / (L/2)) on the sole's floor, a from the middle toward the toe;
     the rim and the print's outline do not change. Reference: that line, at texel centres."""
-    sole = fp.Sole()
+    sole = soles.Sole()
     centre = np.array([[0.0, 0.0]])
     region = aligned_region(centre, sole)
     even = fp.paint(centre, [[1.0, 0.0]], [[0.0, 1.0]], [0.0], 1.0, region, sole)
@@ -259,7 +260,7 @@ def test_the_wind_fills_windward_prints_faster():
     assert fp.windward_refill_rate(facing_plus_x, (3, 0, 0)) == pytest.approx(1.0)  # lee
     assert fp.windward_refill_rate(facing_plus_x, (-3, 0, 0)) == pytest.approx((1 + 2 * math.tan(tilt)) ** 3)
     cliff = (math.sin(1.2), 0.0, math.cos(1.2))
-    assert fp.windward_refill_rate(cliff, (-3, 0, 0)) == pytest.approx((1 + 2 * math.tan(fp.REPOSE)) ** 3)
+    assert fp.windward_refill_rate(cliff, (-3, 0, 0)) == pytest.approx((1 + 2 * math.tan(soles.REPOSE)) ** 3)
     image = np.zeros((1, 1, 4), np.float32)
     image[0, 0] = (1.0, 0.0, 0.0, 1.0)  # a print born at frame 0
     left = [fp.revealed_height(image, 0.03, 0.0, 40.0, (0, 100), refill=40.0, normal=normal, wind=(-3, 0, 0))
@@ -289,8 +290,9 @@ def test_a_foots_print_is_waisted_and_deepest_under_heel_and_ball():
     the lateral axis) is FOOT_WAIST as wide as a straight capsule's and its outer half unchanged;
     its walls still stand no steeper than the angle of repose."""
     texel, depth = 0.001, 0.04
-    plain = fp.Sole(edge=fp.wall_width(depth), rim_width=0.0)
-    foot = fp.Sole(edge=fp.wall_width(depth), rim_width=0.0, arch=fp.FOOT_ARCH, waist=fp.FOOT_WAIST)
+    plain = soles.Sole(edge=soles.wall_width(depth), rim_width=0.0)
+    foot = soles.Sole(edge=soles.wall_width(depth), rim_width=0.0, arch=soles.FOOT_ARCH,
+                      waist=soles.FOOT_WAIST)
     region = fp.Region(-0.3, -0.3, texel, 600, 600)
     images = [fp.paint([[0.0, 0.0]], [[1.0, 0.0]], [[0.0, 1.0]], [0.0], 1.0, region, sole)
               for sole in (plain, foot)]
@@ -298,13 +300,13 @@ def test_a_foots_print_is_waisted_and_deepest_under_heel_and_ball():
     heel, toe = foot.centres()
     middle = (heel + toe) / 2
     row = texel_of(region, (0.0, 0.0))[0]
-    for at, expected in ((heel, 1.0), (toe, 1.0), (middle, fp.FOOT_ARCH)):
+    for at, expected in ((heel, 1.0), (toe, 1.0), (middle, soles.FOOT_ARCH)):
         col = int(np.argmin(np.abs(xs - at)))
         assert images[1][row, col, 0] == pytest.approx(expected, abs=2e-3)
     col = int(np.argmin(np.abs(xs - middle)))
     for half in (slice(row, None), slice(None, row)):  # inner (+y), outer (-y) from the centre row
         widths = [(image[half, col, 3] >= 1.0 - 1e-6).sum() * texel for image in images]
-        expected = fp.FOOT_WAIST if half.start == row else 1.0
+        expected = soles.FOOT_WAIST if half.start == row else 1.0
         assert widths[1] / widths[0] == pytest.approx(expected, abs=2 * texel / widths[0])
     across = depth * images[1][:, col, 0].astype(np.float64)
     along = depth * images[1][row, :, 0].astype(np.float64)

@@ -146,3 +146,38 @@ def test_prints_sit_on_the_triangles_blender_renders_on_an_elevation_model():
     print(f"rendered ground vs prints: {error.max():.2e} m; vs polygon fill: "
           f"{np.abs(other - rendered).max():.2f} m")
     assert np.abs(other - np.array(rendered)).max() > 1.0
+
+
+def test_each_painted_print_narrows_on_the_side_toward_the_walk():
+    """Through the operators, on a walk along -Y (so no axis is the painter's default): a foot's
+    arch curves in on its inner side, toward the line the walker follows; its outer edge runs
+    straight. Reference: which side of the walk's line each print lies on, not print_axes."""
+    terrain = scenes.height_field(6.0, 12)
+    walker = scenes.keyframed_walker(lambda f: (0.3, 2.0 - 4.0 * (f - 1) / 40, 1.0), range(1, 42))
+    scenes.footprint_settings(terrain, walker, (1, 41), stride=0.6, stance=0.24, resolution=1024)
+    assert bpy.ops.sandscape.paint_footprints() == {"FINISHED"}
+    points = next(o for o in bpy.data.objects if o.get("sandscape_object") == "footprints")
+    image = next(i for i in bpy.data.images if i.get("sandscape_image") == "print_map")
+    width, height = image.size
+    pixels = np.empty(width * height * 4, np.float32)
+    image.pixels.foreach_get(pixels)
+    depth = pixels.reshape(height, width, 4)[..., 0]
+    low, size = np.array(image["region_min"]), np.array(image["region_size"])
+    texel = size[0] / width
+    co = np.array([v.co for v in points.data.vertices])[:, :2] + np.array(points.matrix_world.translation)[:2]
+    inner_areas, outer_areas = [], []
+    for x, y in co[2:-2]:  # whole prints, away from the walk's ends
+        # The arch's stretch along the walk (heel and toe centres of the default 27 cm sole):
+        # rows of texels across it; pressed texels either side of the print's centre line.
+        rows = np.arange(int((y - 0.05 - low[1]) / texel), int((y + 0.04 - low[1]) / texel) + 1)
+        columns = np.arange(width)
+        xs = low[0] + (columns + 0.5) * texel
+        pressed = depth[rows][:, (xs > x - 0.15) & (xs < x + 0.15)] > 0.2 * depth.max()
+        offsets = xs[(xs > x - 0.15) & (xs < x + 0.15)] - x
+        toward_line = np.sign(0.3 - x) * offsets > 0
+        inner_areas.append(pressed[:, toward_line].sum())
+        outer_areas.append(pressed[:, ~toward_line].sum())
+    inner, outer = np.array(inner_areas, float), np.array(outer_areas, float)
+    print(f"arch rows: pressed texels toward the walk's line {inner.tolist()}, away {outer.tolist()}")
+    assert len(inner) >= 3 and (inner < 0.85 * outer).all()
+    assert inner.sum() < 0.75 * outer.sum()

@@ -1,4 +1,4 @@
-"""Rendered proof: the displaced sand sits the set depth lower under each print's heel, and only
+"""Rendered proof: the displaced sand sits the set depth lower under each print's ball, and only
 once its foot has landed.
 
 An orthographic camera looks straight down on a flat terrain; the material's surface is
@@ -46,9 +46,10 @@ def painted_walk():
     points = next(o for o in bpy.data.objects if o.get("sandscape_object") == "footprints")
     co = np.array([v.co for v in points.data.vertices])
     births = np.array([a.value for a in points.data.attributes["birth_frame"].data])
-    # The heel's circle centre: a foot presses its heel (and its ball) to the set depth.
-    heel = co + (-0.27 / 2 + 0.75 * 0.10 / 2, 0.0, 0.0)
-    col, row = scenes.project(camera, heel, SIZE, SIZE)
+    # The ball's circle centre: a foot presses its ball (and its heel) to the set depth; the
+    # ball is the wider, so the slumped and crumbled wall leaves its floor whole.
+    ball = co + (0.27 / 2 - 0.10 / 2, 0.0, 0.0)
+    col, row = scenes.project(camera, ball, SIZE, SIZE)
     return scene, col.astype(int), row.astype(int), births
 
 

@@ -8,7 +8,7 @@ import bpy
 import numpy as np
 import pytest
 
-from core import footprints as fp
+from core import sole as soles
 from devtools import operators, readback, scenes
 from devtools.rigs import NAMES, RUN_PLANTS, expected_prints, walking_rig
 
@@ -155,10 +155,10 @@ def test_a_run_leaves_longer_prints_deepest_at_the_toe():
     frame = np.array(next(o for o in bpy.data.objects if o.get("sandscape_object") == "print_frame")
                      .matrix_world.translation)
     # The foot's floor (deepest under heel and ball) times the run's tilt, at +-8 cm.
-    sole = fp.Sole(arch=fp.FOOT_ARCH, waist=fp.FOOT_WAIST)
+    sole = soles.Sole(arch=soles.FOOT_ARCH, waist=soles.FOOT_WAIST)
 
     def floor_ratio(along):
-        return float(fp.floor_depth(along, sole) / fp.floor_depth(-along, sole))
+        return float(soles.floor_depth(along, sole) / soles.floor_depth(-along, sole))
 
     for index in np.flatnonzero(running):
         x, y = co[index, :2] - frame[:2]

@@ -21,6 +21,7 @@ from core import (
     paths,
     post,
 )
+from core import sole as soles
 
 CASES = 10_000
 RNG_SEED = 20261122
@@ -89,12 +90,12 @@ def test_paths(rng):
 
 
 def test_footprint_painter(rng):
-    sole = footprints.Sole()
+    sole = soles.Sole()
     distance = extreme(rng, CASES, -9, 9)
-    pressed, rim = footprints.sole_profile(distance, sole, 10.0 ** rng.uniform(-6, 2))
+    pressed, rim = soles.sole_profile(distance, sole, 10.0 ** rng.uniform(-6, 2))
     assert finite(pressed, rim) and pressed.min() >= 0 and pressed.max() <= 1 and rim.max() <= 1
     a, b = extreme(rng, CASES, -9, 9), extreme(rng, CASES, -9, 9)
-    assert finite(footprints.sole_distance(a, b, sole))
+    assert finite(soles.sole_distance(a, b, sole))
     # 10,000 prints of every size of scale, heading and birth, into one small map.
     centres = rng.normal(0, 2, (CASES, 2))
     angle = rng.uniform(0, 2 * np.pi, CASES)
