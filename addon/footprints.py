@@ -154,10 +154,10 @@ def sole_from(settings):
     """A foot's sole (waisted, deepest under heel and ball), its wall as wide as dry sand crumbles
     at the set depth, slumped across the outline and lumpy (all in scene units)."""
     edge = sole_shape.wall_width(settings.depth)
-    return sole_shape.Sole(length=settings.foot_length, width=settings.foot_width,
-                        edge=edge, rim_width=settings.rim_width,
-                        arch=sole_shape.FOOT_ARCH, waist=sole_shape.FOOT_WAIST,
-                        inside=sole_shape.SLUMPED, crumble=sole_shape.CRUMBLE * edge)
+    return sole_shape.Sole(length=settings.foot_length, width=settings.foot_width, edge=edge,
+                           rim_width=settings.rim_width, arch=sole_shape.FOOT_ARCH,
+                           waist=sole_shape.FOOT_WAIST, inside=sole_shape.SLUMPED,
+                           crumble=sole_shape.CRUMBLE * edge)
 
 
 def frame_range(scene, settings):

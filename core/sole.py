@@ -22,8 +22,6 @@ CRUMBLE = 0.25  # how far a crumbled wall's top wanders, against the wall's widt
 RIM_LUMPS = 0.8  # how much a crumbled rim's height varies about its mean (0: an even lip)
 
 
-
-
 class Sole:
     """Sole shape and profile, in metres. Immutable; `reach` bounds a stamp's influence.
 
