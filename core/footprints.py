@@ -2,7 +2,8 @@
 
 Channels (the numpy twin of what node group "Sandscape Footprint Height" reads):
   R  depression, 0..depth scale: the sole pressed into the sand (1 = the set depth)
-  G  raised rim, 0..depth scale: sand pushed up in a ring around the sole (1 = the set rim)
+  G  raised rim, 0..depth scale: sand pushed up in a ring around the sole (1 = the set rim;
+     a crumbled rim's lumps reach 1 + RIM_LUMPS)
   B  birth frame of the print that owns the texel, normalised to the frame range (0..1)
   A  sole coverage, 0..1: where any sole pressed the sand (the owner test uses it)
 

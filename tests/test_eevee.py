@@ -92,7 +92,9 @@ def test_prints_displace_in_eevee(eevee_scene, sandscape):
     both = (eevee & cycles).sum() / max((eevee | cycles).sum(), 1)
     print(f"prints change {eevee.sum()} of {eevee.size} pixels in EEVEE, {cycles.sum()} in Cycles; "
           f"{both:.0%} of those changed in either changed in both")
-    assert eevee.sum() >= 0.015 * eevee.size  # 2.2 % when written
+    # 2.2 % when written; 1.0 % once the prints' walls straddled their outline (each print one
+    # wall, 7 cm, shorter and narrower): flattened prints change none.
+    assert eevee.sum() >= 0.007 * eevee.size
     assert 0.5 <= eevee.sum() / cycles.sum() <= 2.0 and both >= 0.3
 
 
