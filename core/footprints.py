@@ -23,7 +23,7 @@ or per print.
 import numpy as np
 
 from .shaping import wind_direction
-from .sole import REPOSE, RIM_LUMPS, Sole, arch_hump, crumble_noise, sole_distance, sole_profile
+from .sole import REPOSE, RIM_LUMPS, Sole, arch_hump, crumble_noise, floor_depth, sole_distance, sole_profile
 
 F32 = np.float32
 LOG_FLOOR = -69.0  # log(1e-30): a fully pressed texel keeps no rim, without log(0)
@@ -135,8 +135,9 @@ def _stamp_chunk(flat, region, sole, window, half, prints, centres, inverse, bir
     col = first[:, 0, None, None] + np.arange(window[0])[None, None, :]
     row = first[:, 1, None, None] + np.arange(window[1])[None, :, None]
     col, row = np.broadcast_arrays(col, row)
-    dx = region.x0 + (col + 0.5) * texel - c[:, 0, None, None]
-    dy = region.y0 + (row + 0.5) * texel - c[:, 1, None, None]
+    x = region.x0 + (col + 0.5) * texel  # texel centres in the plane
+    y = region.y0 + (row + 0.5) * texel
+    dx, dy = x - c[:, 0, None, None], y - c[:, 1, None, None]
     m = inverse[prints][:, :, None, None]
     # Offsets need float64 (texel positions far from the origin); the profile does not.
     a = (m[:, 0] * dx + m[:, 1] * dy).astype(F32)
@@ -144,8 +145,6 @@ def _stamp_chunk(flat, region, sole, window, half, prints, centres, inverse, bir
     hump = arch_hump(a, sole) if sole.arch < 1 or sole.waist < 1 else None
     distance = sole_distance(a, b, sole, hump)
     if sole.crumble > 0:
-        x = region.x0 + (col + 0.5) * texel
-        y = region.y0 + (row + 0.5) * texel
         wander, lumps = crumble_noise(x, y, sole.edge_width(texel))
         distance = distance + F32(sole.crumble) * wander
     pressed, rim = sole_profile(distance, sole, texel)
@@ -164,7 +163,7 @@ def _stamp_chunk(flat, region, sole, window, half, prints, centres, inverse, bir
     along = a[inside].astype(np.float64)
     tilt = 1.0 + toe[prints][rank] * np.clip(along / (sole.length / 2), -1.0, 1.0)
     if sole.arch < 1:
-        tilt = tilt * (1.0 - (1.0 - sole.arch) * hump[inside].astype(np.float64))
+        tilt = tilt * floor_depth(along, sole, hump[inside].astype(np.float64))
     # Group by texel, in birth order within each texel (prints arrive sorted by birth).
     sort = np.argsort(pixel * len(prints) + rank, kind="stable")
     pixel, pressed, rim, scale, birth = pixel[sort], pressed[sort], rim[sort], scale[sort], birth[sort]

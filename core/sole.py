@@ -103,10 +103,11 @@ def arch_hump(a, sole):
     return (4.0 * u * (1.0 - u)) ** 3
 
 
-def floor_depth(a, sole):
+def floor_depth(a, sole, hump=None):
     """The floor's depth along the sole (a forward): 1 under the heel and the ball, `arch` between
-    them, through a smooth dip: a foot's heel and ball carry its weight (the painter inlines it)."""
-    return 1.0 - (1.0 - sole.arch) * arch_hump(a, sole)
+    them, through a smooth dip: a foot's heel and ball carry its weight. `hump`: arch_hump(a)
+    where the caller has it already."""
+    return 1.0 - (1.0 - sole.arch) * (arch_hump(a, sole) if hump is None else hump)
 
 
 # Lump values on a 256 x 256 lattice, two per node (the wall's wander, the rim's height),
@@ -117,8 +118,8 @@ LUMP_LATTICE = np.random.default_rng(20261127).uniform(-1.0, 1.0, (2, 256 * 256)
 def crumble_noise(x, y, lump):
     """Two signed value noises (-1..1, smooth) over the painting plane in lumps `lump` wide: how
     far the wall's top wanders and how the rim's height varies. Taken at the texel's place, not
-    the print's, so overlapping prints crumble alike. A lattice lookup: Perlin noise here would
-    triple the painter's time."""
+    the print's, so overlapping prints crumble alike. A lattice lookup: Perlin noise here took
+    several times as long (README, Footprints)."""
     u, v = np.asarray(x, np.float64) / lump, np.asarray(y, np.float64) / lump
     cu, cv = np.floor(u), np.floor(v)
     fu, fv = (u - cu).astype(F32), (v - cv).astype(F32)
