@@ -202,6 +202,7 @@ def update_material(material, values, image=None, look="PHYSICAL", glint_mode="L
             if name in ripple_values:
                 wave.inputs[name].default_value = ripple_values[name]
         _ripple_displacement(material, bool(ripple_values.get("Displacement")))
+    trample_ripples(material)
     scene = scene if scene is not None else bpy.context.scene
     sand_eevee.attach(material, scene, look_node(material), look, node)
     sky_eevee.follow_sand(own.scene_world(scene), material)  # the lit sand EEVEE's world bounces
@@ -397,11 +398,20 @@ def attach_footprints(material, image, space_object, values):
     for name, value in values.items():
         if name in node.inputs and name != "Frame":
             node.inputs[name].default_value = value
+    trample_ripples(material)
     # Displacement and bump: the prints are true geometry, and the shading normal stays the
     # smooth one (true displacement alone shades the adaptive patch by its flat base quads).
     material.displacement_method = "BOTH"
     sand_eevee.sync(tree)
     return node
+
+
+def trample_ripples(material):
+    """The prints' Pressed flattens the ripples, as a foot tramples those it lands on (kept out
+    where either group is an artist's older one without the sockets)."""
+    wave, prints = ripple_node(material), footprint_node(material)
+    if wave is not None and prints is not None and "Flatten" in wave.inputs and "Pressed" in prints.outputs:
+        h.link(material.node_tree, prints.outputs["Pressed"], wave.inputs["Flatten"])
 
 
 def ensure_noise_image(resolution, seed):

@@ -241,6 +241,12 @@ def revealed_height(image, depth, rim, frame, frame_range, margin=1e-3, refill=0
     return (rgb[..., 1] * f(rim) - rgb[..., 0] * f(depth)) * born * left
 
 
+def revealed_pressed(image, depth, frame, frame_range, **kwargs):
+    """Twin of the group's Pressed output: the revealed, not yet refilled share of R (0..1); none
+    at depth 0."""
+    return revealed_height(image, -1.0, 0.0, frame, frame_range, **kwargs) * np.float32(depth > 0)
+
+
 def region_for_faces(corners_xy, corner_face, face_centres, low, high):
     """The X-Y box grown so that every face reaching into (low, high) has its centre inside:
     by the largest distance, per axis, from a face's centre to its corners. A coarse terrain's

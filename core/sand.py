@@ -214,11 +214,12 @@ def ripple_lattice(position, scale):
 
 
 def ripples(position, normal, wind, wavelength, amplitude, steep_fraction=0.2, lee_fraction=0.3,
-            meander=0.0, meander_scale=1.0, variation=0.0):
+            meander=0.0, meander_scale=1.0, variation=0.0, flatten=0.0):
     """(height, normal) of the ripples at world positions (..., 3) with world normals.
 
     Crests run across the wind and wander: phase = 2 pi ((p . wind) / wavelength + meander (2 m - 1)),
-    m the lattice noise (ripple_lattice); height = amplitude x weight x (1 - variation g) x sin(phase).
+    m the lattice noise (ripple_lattice); height = amplitude x weight x (1 - variation g) x
+    (1 - flatten) x sin(phase), flatten 1 where a foot trampled them.
     The normal tilts by the height's gradient through the phase; the slow change of amplitude and
     weight is left out (0.2 degrees of a 13 degree tilt at the defaults, tests/test_ripples.py).
     """
@@ -229,7 +230,8 @@ def ripples(position, normal, wind, wavelength, amplitude, steep_fraction=0.2, l
     m, g, dm = ripple_lattice(position, meander_scale)
     phase = k * (position[..., 0] * direction[0] + position[..., 1] * direction[1]) + \
         2 * np.pi * meander * (2.0 * m - 1.0)
-    size = amplitude * ripple_weight(normal, wind, steep_fraction, lee_fraction) * (1.0 - variation * g)
+    size = amplitude * ripple_weight(normal, wind, steep_fraction, lee_fraction) * (1.0 - variation * g) * \
+        (1.0 - np.asarray(flatten, np.float64))
     height = size * np.sin(phase)
     phase_gradient = k * direction + 4 * np.pi * meander * dm
     gradient = np.zeros(position.shape)

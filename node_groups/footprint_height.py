@@ -7,7 +7,9 @@ driven by the expression `frame`, which runs without Python auto-run. With a Ref
 wind fills a print in: its depth and rim ease towards the surface as exp(−age × rate / Refill
 Time), rate 1 on flat ground and in the lee and (1 + 2 g)³ where the ground rises into the Wind
 at gradient g (core.footprints.windward_refill_rate says why).
-Twin: core.footprints.revealed_height (with Noise Amount 0).
+Pressed is the revealed share of R alone (none at Depth 0: no print): the ripples' Flatten, as a
+foot tramples them.
+Twin: core.footprints.revealed_height (with Noise Amount 0) and revealed_pressed.
 """
 
 import math
@@ -17,7 +19,7 @@ from ..core.sole import REPOSE
 from . import helper as h
 
 NAME = "Sandscape Footprint Height"
-VERSION = 4
+VERSION = 5
 TREE_TYPE = "ShaderNodeTree"
 DESCRIPTION = (
     "Footprint displacement from a Sandscape print map: Rim × G − Depth × R, revealed where "
@@ -52,6 +54,8 @@ OUTPUTS = {
     "Height": ("NodeSocketFloat", "Height of the revealed prints in metres: Rim G - Depth R, varied"),
     "Displacement": ("NodeSocketVector", "Height along the normal, in world units, for the material's "
                      "Displacement output"),
+    "Pressed": ("NodeSocketFloat", "Share of the sand pressed down here, 0..1 (R where revealed and not "
+                "yet refilled; none at Depth 0): a foot tramples the ripples it lands on"),
 }
 
 
@@ -96,6 +100,11 @@ def build(tree):
     h.socket(kept.inputs, "A").default_value = 1.0
     h.link(tree, left.outputs[0], h.socket(kept.inputs, "B"))
     revealed = h.math(tree, "MULTIPLY", shown.outputs[0], kept.outputs["Result"], label="Revealed × Left")
+    pressed_born = h.math(tree, "MULTIPLY", channels.outputs["Red"], born.outputs[0], label="R × Born")
+    pressed_left = h.math(tree, "MULTIPLY", pressed_born.outputs[0], kept.outputs["Result"], label="× Left")
+    has_depth = h.math(tree, "GREATER_THAN", inputs["Depth"], 0.0, label="Depth > 0")
+    pressed = h.math(tree, "MULTIPLY", pressed_left.outputs[0], has_depth.outputs[0], label="Pressed")
+    h.link(tree, pressed.outputs[0], group_out.inputs["Pressed"])
 
     noise = h.add_node(tree, "ShaderNodeTexNoise", (-400, -500), "Variation", noise_dimensions="3D",
                        inputs={"Detail": 2.0})
@@ -119,7 +128,7 @@ def build(tree):
     h.frame(tree, "Reveal at the Birth Frame", (span, span_floor, birth, now, born))
     h.frame(tree, "Rim − Depth", (rim, depth, base, shown))
     h.frame(tree, "Wind Refill", (age, age_floor, windward_age, time, ratio, negative, left, refills, kept,
-                                  revealed))
+                                  revealed, pressed_born, pressed_left, has_depth, pressed))
     h.frame(tree, "Windward Rate", rate_nodes)
     h.frame(tree, "Variation", (noise, centred, variation, height))
     h.frame(tree, "Displacement", (displacement,))

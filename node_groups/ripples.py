@@ -3,10 +3,11 @@
 Crests run across the wind and wander: phase = 2 pi ((p . wind) / Wavelength + Meander (2 m - 1)),
 p the world position, wind the horizontal wind direction and m a smooth value noise on a lattice
 of Meander Scale (so crests bend, join and split as real ones do, rather than ruling the sand
-like corduroy); height = Amplitude x weight x (1 - Variation g) x sin(phase), g a second value
-of the same noise. The weight fades the ripples on steep slopes (Steep Fraction at the
-35 degree angle of repose) and on slopes turned away from the wind (down to Lee Fraction), as
-seed 004 blends its ripple textures by slope and direction. The normal tilts by the height's
+like corduroy); height = Amplitude x weight x (1 - Variation g) x (1 - Flatten) x sin(phase), g a
+second value of the same noise, Flatten 1 where a foot trampled them. The weight fades the
+ripples on steep slopes (Steep Fraction at the 35 degree angle of repose) and on slopes turned
+away from the wind (down to Lee Fraction), as seed 004 blends its ripple textures by slope and
+direction. The normal tilts by the height's
 gradient through the phase. Twin: core.sand.ripples.
 """
 
@@ -16,7 +17,7 @@ from ..core import sand
 from . import helper as h
 
 NAME = "Sandscape Ripples"
-VERSION = 1
+VERSION = 2
 TREE_TYPE = "ShaderNodeTree"
 WAVELENGTH, AMPLITUDE = 0.12, 0.004  # metres: ripples of fine sand
 MEANDER_SCALE = 0.8  # metres: about 7 wavelengths between one bend of a crest and the next
@@ -45,6 +46,8 @@ def build(tree):
                 "back", MEANDER_SCALE, 1e-4, None, "DISTANCE")
     h.add_input(tree, "Variation", "NodeSocketFloat", "How much the ripples' height varies from place to "
                 "place: 0 keeps Amplitude everywhere", VARIATION, 0.0, 1.0, "FACTOR")
+    h.add_input(tree, "Flatten", "NodeSocketFloat", "Share of the ripples flattened here: a footprint's "
+                "Pressed (a foot tramples the ripples it lands on)", 0.0, 0.0, 1.0, "FACTOR")
     h.add_output(tree, "Height", "NodeSocketFloat", "Ripple height above the surface")
     h.add_output(tree, "Normal", "NodeSocketVector", "The rippled normal")
     group_in, group_out = h.group_io(tree)
@@ -93,7 +96,9 @@ def build(tree):
     weighted = h.math(tree, "MULTIPLY", inputs["Amplitude"], weight.outputs[0], label="Amplitude × Weight")
     varied = h.math(tree, "MULTIPLY", inputs["Variation"], lattice["g"], label="Variation × g")
     keep = h.math(tree, "SUBTRACT", 1.0, varied.outputs[0], label="1 − Variation g")
-    scale = h.math(tree, "MULTIPLY", weighted.outputs[0], keep.outputs[0], label="Size")
+    varied_size = h.math(tree, "MULTIPLY", weighted.outputs[0], keep.outputs[0], label="Varied Size")
+    unflattened = h.math(tree, "SUBTRACT", 1.0, inputs["Flatten"], label="1 − Flatten")
+    scale = h.math(tree, "MULTIPLY", varied_size.outputs[0], unflattened.outputs[0], label="Size")
 
     height = h.math(tree, "MULTIPLY", scale.outputs[0], wave.outputs[0], label="Height")
     k = h.math(tree, "DIVIDE", 2 * math.pi, inputs["Wavelength"], label="2π / Wavelength")
@@ -121,7 +126,7 @@ def build(tree):
                                                           centred, shift, phase, wave, wave_slope))
     h.frame(tree, "Fading on Steep and Lee Slopes", (split, upright, slope, steepness, steep_loss, steep,
                                                      downwind, leeness, lee_loss, lee, weight, weighted,
-                                                     varied, keep, scale))
+                                                     varied, keep, varied_size, unflattened, scale))
     h.frame(tree, "Height and Normal", (height, k, across, bend_rate, bend, phase_gradient, rate, gradient,
                                         normal_part, back, tangential, tilted, rippled))
     h.arrange(tree)

@@ -28,7 +28,7 @@ def print_map():
     return image, pixels
 
 
-def probe_material(sandscape, image, values):
+def probe_material(sandscape, image, values, output="Height"):
     helper = sandscape.node_groups.helper
     group = helper.ensure_group(sandscape.node_groups.footprint_height)
     material = bpy.data.materials.new("Footprint Probe")
@@ -42,12 +42,30 @@ def probe_material(sandscape, image, values):
     for key, value in values.items():
         node.inputs[key].default_value = value
     scaled = helper.add_node(tree, "ShaderNodeMath", operation="MULTIPLY_ADD", inputs={1: GAIN, 2: OFFSET})
-    helper.link(tree, node.outputs["Height"], scaled.inputs[0])
+    helper.link(tree, node.outputs[output], scaled.inputs[0])
     emission = helper.add_node(tree, "ShaderNodeEmission", inputs={"Strength": 1.0})
     helper.link(tree, scaled.outputs[0], emission.inputs["Color"])
     output = helper.add_node(tree, "ShaderNodeOutputMaterial")
     helper.link(tree, emission.outputs[0], output.inputs["Surface"])
     return material
+
+
+@pytest.mark.parametrize("depth, frame, refill", [(0.03, 100.0, 0.0), (0.03, 200.0, 40.0), (0.0, 100.0, 0.0)])
+def test_pressed_matches_the_twin(sandscape, print_map, depth, frame, refill):
+    """Pressed, the ripples' Flatten: R where the texel is born, eased by the refill, whatever the
+    rim or the depth's size; none at Depth 0 (the prints turned off)."""
+    image, pixels = print_map
+    values = {"Depth": depth, "Rim": 0.008, "Frame": frame, "Frame Start": 1.0, "Frame End": 250.0,
+              "Noise Amount": 0.15, "Refill Time": refill}
+    material = probe_material(sandscape, image, values, "Pressed")
+    plane = readback.uv_plane()
+    plane.data.materials.append(material)
+    baked = (readback.bake_emit(plane, material, RES)[..., 0] - OFFSET) / GAIN
+    expected = twin.revealed_pressed(pixels, depth, frame, (1.0, 250.0), refill=refill)
+    assert np.abs(baked - expected).max() < TOLERANCE * 10  # a share, not metres: 1e-5
+    born = pixels[..., 2] * 249.0 + 1.0 < frame
+    assert np.array_equal(expected > 0, born & (pixels[..., 0] > 0) & (depth > 0))
+    assert 0.3 < born.mean() < 0.9 and expected.max() <= 1.0
 
 
 @pytest.mark.parametrize("depth, rim, frame, start, end, refill", [

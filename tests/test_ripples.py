@@ -52,20 +52,22 @@ MEANDERING = {"Meander": 0.35, "Meander Scale": 0.5, "Variation": 0.5}
 
 def twin_values(values):
     return {"meander": values["Meander"], "meander_scale": values.get("Meander Scale", 1.0),
-            "variation": values["Variation"]}
+            "variation": values["Variation"], "flatten": values.get("Flatten", 0.0)}
 
 
 @pytest.mark.parametrize("wind, values", [((3.0, 1.0, 0.0), STRAIGHT), ((0.0, -2.0, 5.0), STRAIGHT),
                                           ((0.0, 0.0, 0.0), STRAIGHT), ((3.0, 1.0, 0.0), MEANDERING),
-                                          ((-1.0, 4.0, 0.0), MEANDERING)])
+                                          ((-1.0, 4.0, 0.0), MEANDERING),
+                                          ((3.0, 1.0, 0.0), {**MEANDERING, "Flatten": 0.6})])
 def test_height_and_normal_are_the_twins_on_level_ground(ripple_group, wind, values):
     """Any wind, its vertical part ignored; no wind at all gives crests along Y; crests straight
-    or meandering over a lattice of 0.5 m (four cells across the plane)."""
+    or meandering over a lattice of 0.5 m (four cells across the plane); partly trampled."""
     height, positions, normals = bake_ripples(ripple_group, wind, "Height", **values)
     expected_height, expected_normal = twin.ripples(positions, normals, wind, WAVELENGTH, AMPLITUDE,
                                                     **twin_values(values))
     assert np.abs(height[..., 0] - expected_height).max() <= HEIGHT_TOLERANCE
-    assert np.ptp(expected_height) > 1.9 * AMPLITUDE * (1.0 - values["Variation"])  # the twin is not flat
+    kept = (1.0 - values["Variation"]) * (1.0 - values.get("Flatten", 0.0))
+    assert np.ptp(expected_height) > 1.9 * AMPLITUDE * kept  # the twin is not flat
     normal, _, _ = bake_ripples(ripple_group, wind, "Normal", **values)
     assert np.abs(normal[..., :3] - expected_normal).max() <= NORMAL_TOLERANCE
 
@@ -204,3 +206,30 @@ def test_no_ripples_builds_no_ripple_group(sandscape):
     bpy.ops.sandscape.add_sand_material(ripples=True)
     assert sandscape.addon.sand.ripple_node(material) is not None
     assert len([m for m in bpy.data.materials if m.get("sandscape_structure")]) == 1
+
+
+def test_prints_trample_the_ripples_they_land_on(sandscape):
+    """Painted prints flatten the ripples under them (the Footprint Height group's Pressed into the
+    Ripples' Flatten), whichever came first, prints or ripples, and still after the sand is
+    updated; sand without ripples has nothing to flatten."""
+    sand = sandscape.addon.sand
+    terrain = scenes.height_field(6.0, 24, lambda x, y: 0.0 * x, "Flat")
+    walker = scenes.keyframed_walker(lambda f: (-1.5 + 0.1 * (f - 1), 0.3, 1.0), range(1, 32))
+    scenes.footprint_settings(terrain, walker, (1, 31), resolution=128)
+    bpy.context.view_layer.objects.active = terrain
+    bpy.ops.sandscape.add_sand_material(ripples=False)
+    assert bpy.ops.sandscape.paint_footprints() == {"FINISHED"}
+    material = sand.find_sand_material(terrain)
+
+    def trampled():
+        wave, prints = sand.ripple_node(material), sand.footprint_node(material)
+        links = wave.inputs["Flatten"].links
+        return len(links) == 1 and links[0].from_node == prints and links[0].from_socket.name == "Pressed"
+
+    assert sand.ripple_node(material) is None
+    bpy.ops.sandscape.add_sand_material(ripples=True)  # ripples after the prints
+    assert trampled()
+    bpy.ops.sandscape.add_sand_material(ripples=True, strength=20.0)  # the sand updated
+    assert trampled()
+    assert bpy.ops.sandscape.paint_footprints() == {"FINISHED"}  # painted again
+    assert trampled()
