@@ -18,32 +18,35 @@ DUNES = {"width": 120.0, "depth": 120.0, "cell_size": 0.5, "spacing": 30.0, "san
          "sand_material": True}
 WIND = (0.6, 3.0, 0.0)  # metres per second, from the south: crests run east-west, along the walk
 FRAMES = (1, 240)
-SUN = (math.radians(6.0), 0.85)  # low, ahead-left of the walker, in view: slopes lit from the side
-CAMERA_OFFSET = (-4.5, -1.5, 0.9)  # behind, beside and low, metres: the prints read in raking sun
-# The offset turns with this share of the walker's heading, smoothed over CAMERA_TURN_FRAMES
-# either side: the trail keeps running from the camera toward the walker and the low sun stays in
-# frame (a fixed offset saw the trail run off sideways, 50 degrees from the view).
-CAMERA_TURN, CAMERA_TURN_FRAMES = 0.5, 24
+SUN = (math.radians(6.0), 1.05)  # low, ahead-left of the walker, in view: slopes lit from the side
+# The camera walks the walker's own trail, CAMERA_BEHIND metres back along it, CAMERA_SIDE to its
+# right and CAMERA_HEIGHT up: the prints run from the frame's foot to the walker's heels in every
+# frame (a camera at a fixed offset turned by the heading saw the trail come in from the side).
+CAMERA_BEHIND, CAMERA_SIDE, CAMERA_HEIGHT = 4.5, 0.5, 1.1  # metres
+CAMERA_LENS = 20.0  # mm: the near prints, the walker and the low sun in one frame
+CAMERA_TURN_FRAMES = 24  # the camera's heading is smoothed over this many frames either side
 WALK_SWAY = 0.03  # a straighter S than Add Walker's (it turns up to 11 degrees, not 32)
 CAMERA_CLEARANCE = 0.6  # metres the camera keeps above the sand under it
 CAMERA_SMOOTH_FRAMES = 12  # the lift over a crest eases in and out over about this many frames
-CAMERA_SHIFT = (0.05, 0.05)  # lens shift, not a tilt: the walker low in frame, the low sun in it
+CAMERA_SHIFT = (0.05, 0.0)  # lens shift, not a turn: the low sun further in
 # Desert haze: visibility 10-50 km (../shared/look-references.md); the far dunes fade.
 AIR = {"density": 0.003, "dust_density": 0.002, "margin": 20.0, "visibility": 20000.0, "set_exposure": True,
        "replace_world": True}
-# Cumulus based at 1.5 km: the 6 degree sun reaches that height 14 km off, past the 8 km layer.
-CLOUDS = {"coverage": 0.4, "seed": 2, "base": 1500.0, "thickness": 1200.0, "step": 400.0, "voxel": 50.0,
+# Cumulus based at 1.2 km: seen from 8.5 degrees up within the 8 km layer, in the top of a frame
+# that looks down the trail; the 6 degree sun reaches that height 11 km off, past the layer's grid
+# (at 1 km it crossed the grid's far end toward the sun, 9.75 km off, and shaded the walker).
+CLOUDS = {"coverage": 0.4, "seed": 2, "base": 1200.0, "thickness": 1200.0, "step": 400.0, "voxel": 50.0,
           "reach": 8000.0}
 PRINTS = {"depth": 0.04, "rim": 0.006}  # metres: loose dry sand, a low soft rim
 SAND = {"Threshold": 0.985, "Glint Size": 0.012, "Facing Power": 4.0, "Strength": 60.0, "Seed": 1.0}
 
 
 def follow_camera(scene, figure, terrain):
-    """A camera that keeps its offset from the walker, never below CAMERA_CLEARANCE over the sand
-    under it, and looks at the walker: its path is keyed on every frame (no scripts), its aim a
+    """A camera that walks the walker's trail behind it, never below CAMERA_CLEARANCE over the
+    sand under it, and looks at the walker: its path is keyed on every frame (no scripts), its aim a
     Track To constraint."""
     camera = bpy.data.objects.new("Demo Camera", bpy.data.cameras.new("Demo Camera"))
-    camera.data.lens = 24.0
+    camera.data.lens = CAMERA_LENS
     camera.data.clip_end = 40000.0  # the clouds are kilometres away, the land reaches 20 km
     camera.data.shift_x, camera.data.shift_y = CAMERA_SHIFT
     scene.collection.objects.link(camera)
@@ -54,12 +57,7 @@ def follow_camera(scene, figure, terrain):
         scene.frame_set(int(frame))
         walk.append(np.array(figure.matrix_world.translation))
     scene.frame_set(FRAMES[0])
-    walk = np.array(walk)
-    turn = CAMERA_TURN * smoothed(np.unwrap(np.arctan2(*np.gradient(walk[:, :2], axis=0).T[::-1])),
-                                  CAMERA_TURN_FRAMES)
-    x, y, z = CAMERA_OFFSET
-    places = walk + np.stack([x * np.cos(turn) - y * np.sin(turn), x * np.sin(turn) + y * np.cos(turn),
-                              np.full(len(turn), z)], axis=-1)
+    places = trail_places(np.array(walk), CAMERA_BEHIND, CAMERA_SIDE, CAMERA_HEIGHT)
     top = float(np.max([v[2] for v in terrain.bound_box]))
     floor = walker.ground_heights(scene, terrain, places[:, :2], top) + CAMERA_CLEARANCE
     places[:, 2] = np.maximum(places[:, 2], eased_lift(floor))
@@ -70,6 +68,24 @@ def follow_camera(scene, figure, terrain):
     aim.target = figure
     aim.track_axis, aim.up_axis = "TRACK_NEGATIVE_Z", "UP_Y"
     return camera
+
+
+def trail_places(walk, behind, side, height):
+    """Per frame, the place `behind` back along the walked path (before its start, straight back
+    along its first heading), `side` to the right of the path's smoothed heading there and
+    `height` over the walker's own height at that frame (not the trail's back there: a camera
+    below a walker on a rise sees the trail edge-on)."""
+    arc = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(walk[:, :2], axis=0), axis=1))])
+    back = arc - behind
+    moving = np.flatnonzero(arc > 1e-6)
+    start = (walk[moving[0], :2] - walk[0, :2]) / arc[moving[0]] if len(moving) else np.array([1.0, 0.0])
+    trail = np.stack([np.interp(back, arc, walk[:, axis]) for axis in range(2)], axis=-1)
+    trail[back < 0] = walk[0, :2] + back[back < 0, None] * start
+    heading = np.gradient(trail, axis=0)
+    heading[np.linalg.norm(heading, axis=1) < 1e-9] = start
+    turn = smoothed(np.unwrap(np.arctan2(heading[:, 1], heading[:, 0])), CAMERA_TURN_FRAMES)
+    right = np.stack([np.sin(turn), -np.cos(turn)], axis=-1)
+    return np.concatenate([trail + side * right, walk[:, 2:] + height], axis=-1)
 
 
 def eased_lift(floor):

@@ -97,3 +97,31 @@ def test_every_frame_the_trail_runs_toward_the_walker_and_the_sun_is_in_frame(sa
     assert turns.max() < 30.0
     assert (suns[:, 2] > 0).all() and 0.02 < suns[:, 0].min() and suns[:, 0].max() < 0.4
     assert (suns[:, 1] < 0.98).all()
+
+
+def test_every_frame_the_prints_behind_the_walker_run_up_the_middle_of_the_frame(sandscape, demo_scene):
+    """The camera walks the trail: on every 5th frame, each print already made that lies between
+    2 and 4 m in front of the camera is in frame, in its middle 60 % across and its lower 70 %
+    (a camera beside the walk saw the trail come in from the frame's left edge, x 0.0-0.2)."""
+    from bpy_extras.object_utils import world_to_camera_view
+    from mathutils import Vector
+
+    scene = demo_scene
+    footprints = sandscape.addon.footprints
+    terrain = scene.sandscape_footprints.terrain
+    points = footprints.read_points(ours("footprints")[0])
+    to_world = footprints.find_object(scene, "print_frame", terrain).matrix_world
+    places, seen = [to_world @ Vector(co) for co in points["co"]], []
+    for frame in range(scene.frame_start, scene.frame_end + 1, 5):
+        scene.frame_set(frame)
+        camera = scene.camera
+        for place, birth in zip(places, points["birth_frame"], strict=True):
+            ahead = world_to_camera_view(scene, camera, place)
+            if birth <= frame and 2.0 < ahead.z < 4.0:
+                seen.append((frame, *ahead[:2]))
+    seen = np.array(seen)
+    print(f"{len(seen)} prints seen; x {seen[:, 1].min():.2f}-{seen[:, 1].max():.2f}, "
+          f"y {seen[:, 2].min():.2f}-{seen[:, 2].max():.2f}")
+    assert len(np.unique(seen[:, 0])) > 40  # from about frame 30 on, when the trail is under the camera
+    assert 0.2 < seen[:, 1].min() and seen[:, 1].max() < 0.8
+    assert 0.0 < seen[:, 2].min() and seen[:, 2].max() < 0.7
