@@ -1,6 +1,6 @@
 """The Sandscape sand material: a look (PHYSICAL or JOURNEY), glints (LIT mirror facets or
 EMISSION sparkles) from object-space cells or an image, wind ripples, and the footprint
-displacement when prints are painted; the seeded glint-noise image.
+displacement when prints are painted (the seeded glint-noise image is glint_noise.py's).
 
 The material is ours when it carries MATERIAL_KEY = "sand"; a user's material, even one named
 like ours, is never looked at. Re-running updates our material in place; a change of look,
@@ -9,9 +9,7 @@ are found by their group's key and the other nodes by their node names.
 """
 
 import bpy
-import numpy as np
 
-from ..core import glints as glint_twin
 from ..core import sand as core_sand
 from ..node_groups import (
     catalog,
@@ -412,25 +410,3 @@ def trample_ripples(material):
     wave, prints = ripple_node(material), footprint_node(material)
     if wave is not None and prints is not None and "Flatten" in wave.inputs and "Pressed" in prints.outputs:
         h.link(material.node_tree, prints.outputs["Pressed"], wave.inputs["Flatten"])
-
-
-def ensure_noise_image(resolution, seed):
-    """The seeded white-noise image for this resolution and seed (8-bit, Non-Color, packed).
-
-    One image per (resolution, seed): two materials with other seeds never share, and so never
-    rewrite, each other's image.
-    """
-    image = own.image(own.GLINT_NOISE, seed=seed, resolution=resolution)
-    if image is not None and image.packed_file:
-        return image
-    if image is None:
-        image = bpy.data.images.new("Sandscape Glint Noise", resolution, resolution, alpha=False)
-        own.mark(image, own.IMAGE_KEY, own.GLINT_NOISE, seed=seed, resolution=resolution)
-        # Before the pixels: changing the colour space of a generated image regenerates it.
-        image.colorspace_settings.name = "Non-Color"
-    values = glint_twin.byte_to_unit(glint_twin.noise_image(resolution, seed))
-    rgba = np.repeat(values[..., None], 4, axis=-1)
-    rgba[..., 3] = 1.0
-    image.pixels.foreach_set(rgba.ravel())
-    image.pack()
-    return image

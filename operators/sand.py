@@ -10,7 +10,7 @@ from bpy.props import (
     StringProperty,
 )
 
-from ..addon import sand, units
+from ..addon import glint_noise, sand, units
 from ..node_groups import glints, lit_glints, ripples
 from .base import SandscapeOperator, active_mesh, editable_problem, value_problem
 
@@ -130,7 +130,7 @@ class SANDSCAPE_OT_add_sand_material(SandscapeOperator, bpy.types.Operator):
         image = None
         if self.source == "IMAGE":
             image = (bpy.data.images[self.image] if self.image
-                     else sand.ensure_noise_image(self.image_resolution, self.seed))
+                     else glint_noise.ensure_noise_image(self.image_resolution, self.seed))
         values = {"Threshold": self.threshold, "Glint Size": self.glint_size,
                   "Facing Power": self.facing_power, "Color": self.color, "Strength": self.strength,
                   "Roughness": self.roughness, "Seed": float(self.seed)}
