@@ -37,7 +37,8 @@ def test_a_slumped_wall_keeps_the_feet_volume():
     assert volumes[0] == pytest.approx(area, rel=0.01)
     # Wholly outside: the foot's volume plus the wall's ring, integrated in numpy (+41 %).
     u = np.linspace(0.0, edge, 100001)
-    ring = 2.0 * np.pi * np.trapezoid(soles.wall_ramp(1.0 - u / edge) * (RADIUS + u), u)
+    pressed = soles.wall_ramp(1.0 - u / edge) * (RADIUS + u)
+    ring = 2.0 * np.pi * np.sum((pressed[1:] + pressed[:-1]) / 2 * np.diff(u))  # trapezoids (numpy 1.2x too)
     assert volumes[1] == pytest.approx(area + ring, rel=0.01)
     assert ring > 0.4 * area
     # Half pressed on the outline, untouched beyond half a wall, the floor within half a wall.
