@@ -138,26 +138,19 @@ def read_points(obj):
 
 
 def print_axes(points):
-    """Forward and lateral axes of each print, projected onto the frame's XY plane: (N, 2) each.
-    The lateral axis points to the foot's inner side, where the painter's sole has its arch: to
-    the right of a left foot (side +1), to the left of a right or unknown one."""
+    """Forward and lateral axes of each print, projected onto the frame's XY plane: (N, 2) each,
+    the lateral one toward the foot's inner side (core.paths.print_axes)."""
     heading = points["heading"]
     forward = np.stack([np.cos(heading), np.sin(heading), np.zeros_like(heading)], axis=1)
-    forward, lateral = paths.surface_frames(forward, points["surface_normal"])
-    inner = np.where(points["side"] > 0, -1.0, 1.0)[:, None]
-    return forward[:, :2], inner * lateral[:, :2]
+    return paths.print_axes(forward, points["surface_normal"], points["side"])
 
 
 # ---------------------------------------------------------------- emit and paint
 
 def sole_from(settings):
-    """A foot's sole (waisted, deepest under heel and ball), its wall as wide as dry sand crumbles
-    at the set depth, slumped across the outline and lumpy (all in scene units)."""
-    edge = sole_shape.wall_width(settings.depth)
-    return sole_shape.Sole(length=settings.foot_length, width=settings.foot_width, edge=edge,
-                           rim_width=settings.rim_width, arch=sole_shape.FOOT_ARCH,
-                           waist=sole_shape.FOOT_WAIST, inside=sole_shape.SLUMPED,
-                           crumble=sole_shape.CRUMBLE * edge)
+    """A foot's sole in dry sand at the set depth, in scene units (core.sole.dry_sand_sole)."""
+    return sole_shape.dry_sand_sole(settings.depth, settings.foot_length, settings.foot_width,
+                                    settings.rim_width)
 
 
 def frame_range(scene, settings):

@@ -36,13 +36,10 @@ def walk_inputs(resolution):
     """The 12-print walk as the painter takes it, with the demo's sole (4 cm deep, slumped, crumbled)."""
     frame, positions = walk_path()
     steps = paths.plan_steps(positions, frame, STRIDE, STANCE)
-    edge = soles.wall_width(DEPTH)
-    sole = soles.Sole(edge=edge, rim_width=0.04, arch=soles.FOOT_ARCH, waist=soles.FOOT_WAIST,
-                      inside=soles.SLUMPED, crumble=soles.CRUMBLE * edge)
+    sole = soles.dry_sand_sole(DEPTH)
     centres = steps["contact"][:, :2]
-    forward = steps["forward"][:, :2]
-    inner = np.where(steps["side"] > 0, -1.0, 1.0)[:, None]
-    lateral = inner * np.stack([-forward[:, 1], forward[:, 0]], axis=-1)
+    up = np.tile([0.0, 0.0, 1.0], (len(centres), 1))
+    forward, lateral = paths.print_axes(steps["forward"], up, steps["side"])
     region = painter.fit_region(centres, sole.reach(), resolution, margin=0.05 + sole.rim_width)
     return (centres, forward, lateral, steps["birth"], np.ones(len(centres)), region, sole, FRAMES)
 

@@ -121,3 +121,12 @@ def surface_frames(forward, normals):
     tangent = _unit(np.stack([forward[:, 0], forward[:, 1], lift], axis=1))
     lateral = _unit(np.cross(normals, tangent))
     return tangent, lateral
+
+
+def print_axes(forward, normals, side):
+    """Forward and lateral axes of each print in the painting plane, (N, 2) each: surface_frames'
+    axes with the lateral one pointing to the foot's inner side, where the sole has its arch (to
+    the right of a left foot, side +1; to the left of a right or unknown one)."""
+    forward, lateral = surface_frames(forward, normals)
+    inner = np.where(np.asarray(side) > 0, -1.0, 1.0)[:, None]
+    return forward[:, :2], inner * lateral[:, :2]

@@ -85,6 +85,15 @@ def wall_width(depth, repose=REPOSE):
     return WALL_STEEPNESS * max(float(depth), 0.0) / np.tan(repose)
 
 
+def dry_sand_sole(depth, length=0.27, width=0.10, rim_width=0.04):
+    """A foot's sole pressed `depth` into dry sand (any one length unit): waisted, deepest under
+    heel and ball, its wall as wide as dry sand crumbles at that depth, slumped across the
+    outline and lumpy."""
+    edge = wall_width(depth)
+    return Sole(length=length, width=width, edge=edge, rim_width=rim_width, arch=FOOT_ARCH, waist=FOOT_WAIST,
+                inside=SLUMPED, crumble=CRUMBLE * edge)
+
+
 def wall_ramp(t, rounding=WALL_ROUNDING):
     """0 at t <= 0 to 1 at t >= 1: a straight slope whose ends curve (C1) over `rounding` of the
     width into the flat floor and the flat sand, as a crumbled wall does."""

@@ -181,3 +181,25 @@ def test_each_painted_print_narrows_on_the_side_toward_the_walk():
     print(f"arch rows: pressed texels toward the walk's line {inner.tolist()}, away {outer.tolist()}")
     assert len(inner) >= 3 and (inner < 0.85 * outer).all()
     assert inner.sum() < 0.75 * outer.sum()
+
+
+def test_print_axes_point_the_lateral_axis_to_each_foot_s_inner_side():
+    """On a 30 degree slope rising along +X, walking up it, across it and obliquely: a left foot's
+    (side +1) lateral axis lies clockwise of the heading in plan, a right or unknown foot's
+    counter-clockwise; the forward axis keeps the heading in plan. Up and across the slope the
+    lateral axis is the heading turned a right angle. Reference: the heading turned by hand."""
+    slope = math.radians(30.0)
+    normal = (-math.sin(slope), 0.0, math.cos(slope))
+    headings = np.radians([0.0, 90.0, 0.0, 90.0, 45.0, 45.0])
+    sides = np.array([1, 1, -1, -1, 1, 0])
+    forward = np.stack([np.cos(headings), np.sin(headings), 0 * headings], -1)
+    along, lateral = paths.print_axes(forward, np.tile(normal, (len(sides), 1)), sides)
+    plan = forward[:, :2]
+    assert np.allclose(along / np.linalg.norm(along, axis=1)[:, None], plan, atol=1e-12)
+    turn = plan[:, 0] * lateral[:, 1] - plan[:, 1] * lateral[:, 0]  # heading x lateral: < 0 clockwise
+    assert np.all(np.sign(turn) == np.where(sides > 0, -1.0, 1.0))
+    square = slice(0, 4)
+    clockwise = np.stack([plan[square, 1], -plan[square, 0]], -1)
+    expected = np.where((sides[square] > 0)[:, None], clockwise, -clockwise)
+    unit = lateral[square] / np.linalg.norm(lateral[square], axis=1)[:, None]
+    assert np.allclose(unit, expected, atol=1e-12)
