@@ -24,7 +24,7 @@ from .sun_lamp import ensure_sun, is_ours, scene_sun  # noqa: F401 (the atmosphe
 
 # Bump when build_sky_nodes changes: a world built by an older version is rebuilt.
 WORLD_NODES_KEY = "sandscape_sky_nodes"
-WORLD_NODES_VERSION = 4
+WORLD_NODES_VERSION = 5
 CLEAR = 0.01  # the haze may end where less than 1 % of the light behind it gets through
 MAX_REACH_M = 20000.0  # thin air would otherwise ask for a box hundreds of kilometres wide
 DEFAULT_WORLD_GREYS = (0.0508761, 0.05)  # a new file's world colour and a new world's, linear

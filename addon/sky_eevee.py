@@ -1,5 +1,10 @@
 """The sky world's output for EEVEE: the sky the camera sees, and a lighting world made for EEVEE.
 
+The camera's sky gets the sun's disc drawn in (EEVEE draws no Sky Texture disc: Cycles only):
+an even disc as wide as the lamp's, as bright as gives the lamp's irradiance (core.sun), both
+driven from the lamp. EEVEE keeps the film in half floats: a real sun's disc (some 10^6) is held
+at 65504, far past white at any exposure a sunlit frame takes.
+
 EEVEE lights diffuse surfaces from the world's first two spherical-harmonic bands, derung, and
 clamped by the scene's Clamp Surface Indirect. Its lighting world is therefore two uniform
 hemispheres (core.atmosphere.eevee_world_hemispheres): above, the sky's irradiance on level
@@ -22,6 +27,7 @@ from ..core import sun as sky_sun
 from ..node_groups import helper as h
 from . import compat, drivers
 from . import ownership as own
+from .sun_lamp import SKY_SUN_SIZE
 
 OUTPUT = "Sandscape EEVEE World Output"
 SUN, SUN_LIGHT = "Sandscape EEVEE Ground Sun", "Sandscape EEVEE Ground Sun Light"
@@ -29,6 +35,9 @@ SKY_LIGHT, GROUND_COLOR = "Sandscape EEVEE Ground Sky Light", "Sandscape EEVEE G
 LIGHT_EXPRESSION = "energy * tint * (1 - hidden)"  # a lamp hidden from renders lights no sand
 CLAMP = "Sandscape EEVEE Clamp"
 CLAMP_EXPRESSION = "limit if limit > 0 else 1e9"  # 0: EEVEE clamps nothing
+DISC, DISC_EDGE = "Sandscape EEVEE Sun Disc", "Sandscape EEVEE Sun Disc Edge"
+DISC_EDGE_EXPRESSION = "angle / 2"
+DISC_STRENGTH_EXPRESSION = "1 / (2 * pi * max(1 - cos(angle / 2), 1e-12))"  # core.sun.disc_solid_angle
 LOOK = "Sandscape Look"  # the sand material's look node (addon/sand.py), whose Color the ground takes
 
 
@@ -38,7 +47,7 @@ def build(tree, ray, shown):
     axes = h.add_node(tree, "ShaderNodeSeparateXYZ")
     h.link(tree, direction.outputs["Generated"], axes.inputs[0])
     above = h.math(tree, "GREATER_THAN", axes.outputs["Z"], 0.0, label="Above the Horizon")
-    sky, ground = _level_light(tree)
+    sky, ground, sun_unit, sun_light = _level_light(tree)
     # The ground held within the contrast EEVEE keeps without deringing (the sky stays exact).
     ratio = air.eevee_ground_ratio(compat.eevee_dering_limit())
     floor = h.add_node(tree, "ShaderNodeVectorMath", operation="SCALE", inputs={"Scale": 1 / ratio})
@@ -71,10 +80,11 @@ def build(tree, ray, shown):
     lit = h.add_node(tree, "ShaderNodeBackground", name="Sandscape EEVEE Sky Light",
                      inputs={"Strength": 1 / math.pi})  # irradiance on level ground: radiance x pi
     h.link(tree, h.socket(hemispheres.outputs, "Result"), lit.inputs["Color"])
+    seen = _with_disc(tree, direction.outputs["Generated"], sun_unit, sun_light, shown.outputs[0])
     mix = h.add_node(tree, "ShaderNodeMixShader", name="Sandscape EEVEE Camera Sees the Disc")
     h.link(tree, ray.outputs["Is Camera Ray"], mix.inputs["Fac"])
     h.link(tree, lit.outputs[0], mix.inputs[1])
-    h.link(tree, shown.outputs[0], mix.inputs[2])
+    h.link(tree, seen, mix.inputs[2])
     output = h.add_node(tree, "ShaderNodeOutputWorld", name=OUTPUT, target="EEVEE")
     h.link(tree, mix.outputs[0], output.inputs["Surface"])
 
@@ -102,7 +112,33 @@ def _level_light(tree):
     ground = h.add_node(tree, "ShaderNodeVectorMath", operation="MULTIPLY", label="Ground Radiance × π")
     h.link(tree, level.outputs[0], ground.inputs[0])
     h.link(tree, color.outputs[0], ground.inputs[1])
-    return sky, ground.outputs[0]
+    return sky, ground.outputs[0], sun_unit.outputs[0], light.outputs[0]
+
+
+def _with_disc(tree, view, sun, light, shown):
+    """The camera's sky with the sun's disc on it: where the view lies within the disc's radius
+    of the sun's direction, the lamp's light over the disc's solid angle."""
+    unit = h.add_node(tree, "ShaderNodeVectorMath", operation="NORMALIZE")
+    h.link(tree, view, unit.inputs[0])
+    # The chord between the unit view and the sun's direction against the disc's radius: for a
+    # sun's sizes the two agree within 1e-4. (A cosine against a driven cos of the radius failed:
+    # a driven socket holds 0.99995 as 1.0, and the disc vanished.)
+    chord = h.add_node(tree, "ShaderNodeVectorMath", operation="DISTANCE", label="View to Sun")
+    h.link(tree, unit.outputs[0], chord.inputs[0])
+    h.link(tree, sun, chord.inputs[1])
+    inside = h.math(tree, "LESS_THAN", h.socket(chord.outputs, "Value"), 0.5 * SKY_SUN_SIZE,
+                    label="Within the Disc (its radius, driven)")
+    inside.name = DISC_EDGE
+    radiance = h.add_node(tree, "ShaderNodeVectorMath", operation="SCALE", label="Disc Radiance")
+    h.link(tree, light, radiance.inputs[0])
+    h.link(tree, inside.outputs[0], radiance.inputs["Scale"])
+    disc = h.add_node(tree, "ShaderNodeBackground", name=DISC, label="Sun Disc (EEVEE draws none)",
+                      inputs={"Strength": 1.0 / sky_sun.disc_solid_angle(SKY_SUN_SIZE)})
+    h.link(tree, radiance.outputs[0], disc.inputs["Color"])
+    both = h.add_node(tree, "ShaderNodeAddShader", label="Sky + Disc")
+    h.link(tree, shown, both.inputs[0])
+    h.link(tree, disc.outputs[0], both.inputs[1])
+    return both.outputs[0]
 
 
 def _sky_irradiance(tree, height):
@@ -142,6 +178,7 @@ def follow_sun(world, sun):
     if direction is None or light is None:
         return
     drivers.follow_lamp_axis(direction.inputs[:3], sun)
+    _follow_disc_size(tree, sun)
     for index, socket in enumerate(light.inputs[:3]):
         if sun is None:
             socket.driver_remove("default_value")
@@ -151,6 +188,22 @@ def follow_sun(world, sun):
                           [("energy", "OBJECT", sun, "data.energy"),
                            ("tint", "OBJECT", sun, f"data.color[{index}]"),
                            ("hidden", "OBJECT", sun, "hide_render")])
+
+
+def _follow_disc_size(tree, sun):
+    """The disc's edge and its radiance per unit irradiance from the lamp's angle (the sky's disc
+    size without a lamp)."""
+    edge, disc = own.node(tree, DISC_EDGE), own.node(tree, DISC)
+    if edge is None or disc is None:
+        return
+    for socket, expression, value in ((edge.inputs[1], DISC_EDGE_EXPRESSION, 0.5 * SKY_SUN_SIZE),
+                                      (disc.inputs["Strength"], DISC_STRENGTH_EXPRESSION,
+                                       1.0 / sky_sun.disc_solid_angle(SKY_SUN_SIZE))):
+        if sun is None:
+            socket.driver_remove("default_value")
+            socket.default_value = value
+        else:
+            drivers.drive(socket, "default_value", expression, [("angle", "OBJECT", sun, "data.angle")])
 
 
 def follow_clamp(world, scene):

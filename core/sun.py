@@ -25,6 +25,16 @@ def disc_irradiance(elevation):
     return np.maximum(_interpolate(elevation, _DISC), 0.0)
 
 
+def disc_solid_angle(size):
+    """Solid angle (sr) of a disc `size` radians across."""
+    return 2.0 * np.pi * (1.0 - np.cos(0.5 * float(size)))
+
+
+def disc_radiance(irradiance, size):
+    """Radiance of an even disc `size` radians across that gives `irradiance` on a surface facing it."""
+    return np.asarray(irradiance, dtype=np.float64) / disc_solid_angle(size)
+
+
 def sky_irradiance(elevation):
     """The disc-less sky's irradiance on level ground, (R, G, B)."""
     return _interpolate(elevation, _SKY)

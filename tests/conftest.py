@@ -36,6 +36,30 @@ def no_traceback(capfd):
     assert "Maximum number of closures exceeded" not in out + err
 
 
+EEVEE_SIZE = (64, 36)  # pixels: EEVEE renders few and small (software OpenGL here)
+
+
+@pytest.fixture
+def eevee_scene():
+    """The empty file set to render in EEVEE at EEVEE_SIZE, 4 samples; the test skips, saying why,
+    where no OpenGL context can be made."""
+    from devtools import readback, scenes
+
+    scene = bpy.context.scene
+    scene.render.engine = "BLENDER_EEVEE"
+    scene.render.resolution_x, scene.render.resolution_y = EEVEE_SIZE
+    scene.render.resolution_percentage = 100
+    scene.eevee.taa_render_samples = 4
+    probe = scenes.camera("PERSP")
+    try:
+        readback.render(scene)
+    except RuntimeError as error:  # no OpenGL context: EEVEE cannot draw
+        pytest.skip(f"EEVEE cannot render here (no OpenGL context: {error})")
+    finally:
+        bpy.data.objects.remove(probe)
+    return scene
+
+
 @pytest.fixture
 def sandscape():
     """The installed extension's package (bl_ext.local.sandscape)."""

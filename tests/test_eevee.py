@@ -6,30 +6,13 @@ import math
 import bpy
 import numpy as np
 import pytest
+from conftest import EEVEE_SIZE as SIZE  # the eevee_scene fixture's
 
 from devtools import readback, scenes
 
-SIZE = (64, 36)
 SKY_TOLERANCE = 0.06  # per channel: EEVEE's sky lighting of the ground against Cycles'
 WALL_TOLERANCE = 0.20  # per channel: a wall in shade, lit by the sky and the sand, against Cycles
 WALL_TOLERANCE_DERUNG = 0.45  # the same where EEVEE's deringing caps the sand's light (below)
-
-
-@pytest.fixture
-def eevee_scene():
-    scene = bpy.context.scene
-    scene.render.engine = "BLENDER_EEVEE"
-    scene.render.resolution_x, scene.render.resolution_y = SIZE
-    scene.render.resolution_percentage = 100
-    scene.eevee.taa_render_samples = 4
-    probe = scenes.camera("PERSP")
-    try:
-        readback.render(scene)
-    except RuntimeError as error:  # no OpenGL context: EEVEE cannot draw
-        pytest.skip(f"EEVEE cannot render here (no OpenGL context: {error})")
-    finally:
-        bpy.data.objects.remove(probe)
-    return scene
 
 
 def test_god_rays_shine_from_the_sun_in_eevee(eevee_scene, sandscape):

@@ -1,0 +1,53 @@
+"""EEVEE draws the sun's disc the Sky Texture leaves out there (its Sun Disc is Cycles only):
+the sky world's EEVEE output puts an even disc, as wide as the lamp's, as bright as gives the
+lamp's irradiance, in the camera's sky. Reference: the lamp's strength and colour over the
+disc's solid angle (core.sun), and nothing of it off the disc.
+
+An artist's lamp at strength 4: the sky model's own sun (about 10^6) passes the 65504 of
+EEVEE's half-float film, which then holds it there."""
+
+import math
+
+import bpy
+import numpy as np
+from mathutils import Vector
+
+from core import sun as sky_sun
+from devtools import readback, scenes
+
+LENS = 500.0  # mm on a 36 mm sensor, 64 px across
+ANGLE = 0.02  # radians: the artist's sun, about 18 pixels across here
+RADIANCE_TOLERANCE = 0.01  # relative, per channel, on the pixels well inside the disc (the sky adds 0.2 %)
+
+
+def test_eevee_draws_the_sun_disc_as_bright_as_the_lamp(eevee_scene, sandscape):
+    scene = eevee_scene
+    lamp = bpy.data.lights.new("Their Sun", "SUN")
+    lamp.energy, lamp.color, lamp.angle = 4.0, (1.0, 0.9, 0.7), ANGLE
+    sun = bpy.data.objects.new("Their Sun", lamp)
+    sun.rotation_euler = (math.radians(60.0), 0.0, math.radians(20.0))  # 30 degrees up
+    scene.collection.objects.link(sun)
+    air = scene.sandscape_atmosphere
+    air.density, air.dust_density, air.use_haze, air.use_wind = 0.0, 0.0, False, False
+    camera = scenes.camera("PERSP", location=(0.0, 0.0, 2.0), lens=LENS)
+    assert bpy.ops.sandscape.add_atmosphere() == {"FINISHED"}
+    assert sandscape.addon.atmosphere.scene_sun(scene) == sun
+    bpy.context.view_layer.update()
+    toward = (sun.matrix_world.to_3x3() @ Vector((0.0, 0.0, 1.0))).normalized()
+    camera.rotation_euler = toward.to_track_quat("-Z", "Y").to_euler()
+    bpy.context.view_layer.update()
+    scene.eevee.taa_render_samples = 16
+    pixels = readback.render(scene)[..., :3].astype(np.float64)
+    assert np.isfinite(pixels).all()
+    expected = sky_sun.disc_radiance(np.array(lamp.color) * lamp.energy, ANGLE)
+    place = np.array([camera.location + toward * 100.0])
+    columns, rows = scenes.project(camera, place, scene.render.resolution_x, scene.render.resolution_y)
+    grid = np.stack(np.mgrid[0:pixels.shape[0], 0:pixels.shape[1]], -1) + 0.5
+    distance = np.linalg.norm(grid - np.array([rows[0], columns[0]]), axis=-1)  # pixels from the sun
+    radius = 0.5 * ANGLE / (camera.data.sensor_width / LENS / pixels.shape[1])
+    inside, outside = pixels[distance < radius - 1.5], pixels[distance > radius + 2.5]
+    print(f"disc radius {radius:.1f} px, {len(inside)} pixels inside: {inside.mean(0)} against {expected}; "
+          f"off the disc at most {outside.max():.3g}")
+    assert len(inside) >= 20
+    assert np.allclose(inside.mean(0), expected, rtol=RADIANCE_TOLERANCE)
+    assert outside.max() < 0.01 * expected.max()  # the sky beside it (about 0.2 %), no disc
