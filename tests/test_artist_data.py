@@ -128,7 +128,7 @@ def test_the_sky_and_the_rays_follow_a_sun_you_swap_in(sandscape):
     assert sandscape.addon.sun_screen.driven_sun(scene.compositing_node_group) == second
     drivers = [d for d in scene.world.node_tree.animation_data.drivers
                if "Sandscape EEVEE Clamp" not in d.data_path]  # that one reads the scene's clamp
-    assert len(drivers) == 10  # the sky's sun (4), EEVEE's ground light (3 axes, 3 channels)
+    assert len(drivers) == 12  # the sky's sun (4), EEVEE's ground light (3 axes, 3 channels), its disc (2)
     assert all(d.driver.is_valid and d.driver.variables[0].targets[0].id == second for d in drivers)
 
 
