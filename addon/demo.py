@@ -18,6 +18,10 @@ DUNES = {"width": 120.0, "depth": 120.0, "cell_size": 0.5, "spacing": 30.0, "san
          "sand_material": True}
 WIND = (0.6, 3.0, 0.0)  # metres per second, from the south: crests run east-west, along the walk
 FRAMES = (1, 240)
+# The walker sets off this many frames before the film starts, so from its first frame the camera
+# behind it looks along a trail of prints (starting with the film, frames 1-70 showed bare sand).
+PREROLL = 96  # 4 s: 5.6 m walked, past the camera's CAMERA_BEHIND and the frame's foot
+WALK_FRAMES = (FRAMES[0] - PREROLL, FRAMES[1])
 SUN = (math.radians(6.0), 1.05)  # low, ahead-left of the walker, in view: slopes lit from the side
 # The camera walks the walker's own trail, CAMERA_BEHIND metres back along it, CAMERA_SIDE to its
 # right and CAMERA_HEIGHT up: the prints run from the frame's foot to the walker's heels in every
@@ -51,13 +55,14 @@ def follow_camera(scene, figure, terrain):
     camera.data.shift_x, camera.data.shift_y = CAMERA_SHIFT
     scene.collection.objects.link(camera)
     scene.camera = camera
-    frames = np.arange(FRAMES[0], FRAMES[1] + 1)
+    walk_frames = np.arange(WALK_FRAMES[0], WALK_FRAMES[1] + 1)
     walk = []
-    for frame in frames:
+    for frame in walk_frames:
         scene.frame_set(int(frame))
         walk.append(np.array(figure.matrix_world.translation))
     scene.frame_set(FRAMES[0])
-    places = trail_places(np.array(walk), CAMERA_BEHIND, CAMERA_SIDE, CAMERA_HEIGHT)
+    frames = np.arange(FRAMES[0], FRAMES[1] + 1)
+    places = trail_places(np.array(walk), CAMERA_BEHIND, CAMERA_SIDE, CAMERA_HEIGHT)[frames - WALK_FRAMES[0]]
     top = float(np.max([v[2] for v in terrain.bound_box]))
     floor = walker.ground_heights(scene, terrain, places[:, :2], top) + CAMERA_CLEARANCE
     places[:, 2] = np.maximum(places[:, 2], eased_lift(floor))
@@ -124,8 +129,10 @@ def build(context):
                scene=scene)
     steps = scene.sandscape_footprints
     steps.terrain = terrain
-    steps.walker, path = walker.ensure_walker(scene, terrain, *FRAMES, sway=WALK_SWAY)  # 14 m in 10 s
+    steps.walker, path = walker.ensure_walker(scene, terrain, *WALK_FRAMES, sway=WALK_SWAY)  # 19.6 m in 14 s
     steps.source = "WALKER"
+    steps.use_scene_range = False
+    steps.frame_start, steps.frame_end = WALK_FRAMES
     steps.resolution = 2048
     for name, value in PRINTS.items():
         setattr(steps, name, value)

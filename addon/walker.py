@@ -27,7 +27,12 @@ TERRAIN_SHARE = 0.8  # the walk never leaves the middle 80 % of the terrain (slo
 HEIGHT = 1.7  # metres: a person-sized stand-in
 CLOAK = (0.2, 0.035, 0.022, 1.0)  # linear: a deep red cloak against the sand (the traveller of seed 004)
 GAIT_KEY = "sandscape_stride"  # on the walker: what its limbs were keyed for
-TORSO = (0.16, 0.2, 0.56)  # radius at the hips, at the shoulders, length
+# A robe from the shoulders to below the knees, flaring as the traveller's cloak of seed 004 does
+# (a box-like torso over bare legs read as a mannequin): radius at the hem, at the shoulders, the
+# hem's height over the soles, and its depth front to back against its width.
+ROBE = (0.3, 0.19, 0.5, 0.7)
+SHOULDERS = 1.42  # metres over the soles
+FIGURE_SHAPE_KEY, FIGURE_SHAPE = "sandscape_figure_shape", 2  # 2: the robe (1: a torso over the hips)
 HEAD = 0.11  # radius; its top at HEIGHT
 NECK = (0.05, 0.06, 0.14)  # radius at the top, at the bottom, length: from inside the torso into the head
 
@@ -48,10 +53,13 @@ def ensure_walker(scene, terrain, start, end, sway=SWAY):
     walker = own.scene_object(scene, own.WALKER)
     if walker is None:
         walker = _new_walker(scene, path)
-    elif not walker_gait.limbs(walker):  # a figure saved before its limbs swung had them in its mesh
+    elif walker.get(FIGURE_SHAPE_KEY) != FIGURE_SHAPE:  # an older figure's body: the robe replaces it
         cloak = own.slot_material(walker, own.CLOAK)
-        walker.data = figure_mesh(units.to_units(scene, 1.0))
+        old, walker.data = walker.data, figure_mesh(units.to_units(scene, 1.0))
         walker.data.materials.append(cloak or _cloak_material())
+        if old.users == 0:
+            bpy.data.meshes.remove(old)
+    walker[FIGURE_SHAPE_KEY] = FIGURE_SHAPE
     _stay_upright(walker)
     _animate(walker, start, end)
     update_stride(scene, walker, start, end)
@@ -138,14 +146,15 @@ def ground_heights(scene, terrain, xy, top):
 
 
 def figure_mesh(scale):
-    """A low-poly figure's body standing on its origin facing +X, HEIGHT tall: a torso broader
-    across than deep over the hips, a neck, a head (its limbs are walker_gait's).
-    `scale`: scene units per metre."""
+    """A low-poly figure's body standing on its origin facing +X, HEIGHT tall: a robe broader
+    across than deep, a neck, a head (its limbs are walker_gait's, the legs swinging inside the
+    robe and the shins showing below it). `scale`: scene units per metre."""
     bm = bmesh.new()
-    hips = walker_gait.HIPS
-    torso = Matrix.Translation((0.0, 0.0, hips + TORSO[2] / 2)) @ Matrix.Diagonal((0.65, 1.0, 1.0, 1.0))
-    bmesh.ops.create_cone(bm, cap_ends=True, segments=12, radius1=TORSO[0], radius2=TORSO[1], depth=TORSO[2],
-                          matrix=torso)
+    hem_radius, shoulder_radius, hem, depth_share = ROBE
+    robe = Matrix.Translation((0.0, 0.0, (hem + SHOULDERS) / 2))
+    robe = robe @ Matrix.Diagonal((depth_share, 1.0, 1.0, 1.0))
+    bmesh.ops.create_cone(bm, cap_ends=True, segments=20, radius1=hem_radius, radius2=shoulder_radius,
+                          depth=SHOULDERS - hem, matrix=robe)
     neck_top, neck_bottom, neck_length = NECK  # without it the head floated over the shoulders
     neck = Matrix.Translation((0.0, 0.0, HEIGHT - 2 * HEAD + 0.04 - neck_length / 2))
     bmesh.ops.create_cone(bm, cap_ends=True, segments=10, radius1=neck_bottom, radius2=neck_top,

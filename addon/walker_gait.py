@@ -22,6 +22,7 @@ THIGH = SHIN = 0.44  # a leg a hair longer than the hips are high: the planted f
 LEG_LENGTH = THIGH + SHIN
 STANCE_LIMITS = (0.06, 0.16)  # metres either side of the path a leg hangs (from the prints' stance)
 SHOULDER = 0.22  # metres from the middle
+ARM_SPLAY = np.radians(12.0)  # arms hang out from the body, clear of the walker's flaring robe
 # Tapered cylinders hanging from a pivot: name: (radius at the bottom, at the top, length, side,
 # the pivot's height over the soles, or its drop below the end of the limb it hangs from), metres.
 # A thigh's distance from the middle follows the stance.
@@ -91,6 +92,9 @@ def ensure_limbs(walker, material, scale, stance):
         across = SHOULDER * scale if name.endswith("arm") else float(
             np.clip(stance / 2, STANCE_LIMITS[0] * scale, STANCE_LIMITS[1] * scale))
         limb.location = (0.0, side * across, pivot * scale)
+        # A turn about X comes first in XYZ order: the hand moves out to its side, the swing
+        # about Y keyed below keeps it there.
+        limb.rotation_euler[0] = side * ARM_SPLAY if name.endswith("arm") else 0.0
     return found
 
 

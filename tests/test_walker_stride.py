@@ -118,3 +118,40 @@ def test_each_foot_lands_on_its_print(sandscape, stride):
     assert 0.0 < lead
 
 
+
+
+def test_the_robe_hides_the_thighs_and_the_arms_swing_clear_of_it(sandscape):
+    """The stand-in's robe (flaring from the shoulders to below the knees) against its limbs over
+    a walk at a long stride: every thigh vertex above the hem stays inside the robe's elliptic
+    section at its height, and every arm vertex below the shoulder's curve stays outside it, so
+    no limb pokes through the cloth on any frame (measured in the walker's own space)."""
+    walker_module = sandscape.addon.walker
+    hem_radius, shoulder_radius, hem, depth_share = walker_module.ROBE
+    top = walker_module.SHOULDERS
+    terrain = scenes.height_field(30.0, 30, lambda x, y: 0.05 * x, name="Sand")
+    settings = scenes.footprint_settings(terrain, None, (1, 61), resolution=128)
+    assert bpy.ops.sandscape.add_walker() == {"FINISHED"}
+    settings.stride = 0.9
+    assert bpy.ops.sandscape.paint_footprints() == {"FINISHED"}
+    scene, walker = bpy.context.scene, settings.walker
+    limbs = sandscape.addon.walker_gait.limbs(walker)
+
+    def robe_share(local):  # under 1 inside the robe's section at the point's height
+        radius = hem_radius + (shoulder_radius - hem_radius) * (local[:, 2] - hem) / (top - hem)
+        return np.hypot(local[:, 0] / (depth_share * radius), local[:, 1] / radius)
+
+    thighs, arms = [], []
+    for frame in range(1, 62, 3):
+        scene.frame_set(frame)
+        to_body = np.array(walker.matrix_world.inverted())
+        for name, limb in limbs.items():
+            world = np.array(limb.matrix_world)
+            local = np.array([v.co[:] for v in limb.data.vertices])
+            body = (np.c_[local, np.ones(len(local))] @ (to_body @ world).T)[:, :3]
+            if name.endswith("thigh"):
+                thighs.append(robe_share(body[body[:, 2] > hem]))
+            elif name.endswith("arm"):
+                arms.append(robe_share(body[(body[:, 2] > hem) & (body[:, 2] < top - 0.15)]))
+    thighs, arms = np.concatenate(thighs), np.concatenate(arms)
+    print(f"thighs reach {thighs.max():.2f} of the robe, arms come within {arms.min():.2f}")
+    assert thighs.max() < 1.0 and arms.min() > 1.0
