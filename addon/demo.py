@@ -41,6 +41,9 @@ AIR = {"density": 0.003, "dust_density": 0.002, "margin": 20.0, "visibility": 20
 # (at 1 km it crossed the grid's far end toward the sun, 9.75 km off, and shaded the walker).
 CLOUDS = {"coverage": 0.4, "seed": 2, "base": 1200.0, "thickness": 1200.0, "step": 400.0, "voxel": 50.0,
           "reach": 8000.0}
+# Shot under the grey-card exposure Add Atmosphere sets, as golden hour is photographed: AgX then
+# keeps the lit sand's colour instead of rolling it toward white (a milky frame at the card's).
+EXPOSURE_SHIFT = -0.7  # stops
 PRINTS = {"depth": 0.04, "rim": 0.006}  # metres: loose dry sand, a low soft rim
 SAND = {"Threshold": 0.985, "Glint Size": 0.012, "Facing Power": 4.0, "Strength": 60.0, "Seed": 1.0}
 
@@ -146,6 +149,7 @@ def build(context):
     # that shows level ground under it at its own grey; the dust box spans what the camera
     # sees over the frames, out to where the haze lets 1 % through.
     atmosphere.apply(scene, air)
+    scene.view_settings.exposure += EXPOSURE_SHIFT
     scene.view_settings.view_transform = "AgX"
     scene.view_settings.look = "AgX - Punchy"  # the haze greys the sand; AgX's base look more so
     for name, value in CLOUDS.items():
