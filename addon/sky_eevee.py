@@ -38,6 +38,8 @@ CLAMP_EXPRESSION = "limit if limit > 0 else 1e9"  # 0: EEVEE clamps nothing
 DISC, DISC_EDGE = "Sandscape EEVEE Sun Disc", "Sandscape EEVEE Sun Disc Edge"
 DISC_EDGE_EXPRESSION = "angle / 2"
 DISC_STRENGTH_EXPRESSION = "1 / (2 * pi * max(1 - cos(angle / 2), 1e-12))"  # core.sun.disc_solid_angle
+# Their values without a lamp: the sky's own disc.
+DISC_EDGE_DEFAULT, DISC_STRENGTH_DEFAULT = 0.5 * SKY_SUN_SIZE, 1.0 / sky_sun.disc_solid_angle(SKY_SUN_SIZE)
 LOOK = "Sandscape Look"  # the sand material's look node (addon/sand.py), whose Color the ground takes
 
 
@@ -126,14 +128,14 @@ def _with_disc(tree, view, sun, light, shown):
     chord = h.add_node(tree, "ShaderNodeVectorMath", operation="DISTANCE", label="View to Sun")
     h.link(tree, unit.outputs[0], chord.inputs[0])
     h.link(tree, sun, chord.inputs[1])
-    inside = h.math(tree, "LESS_THAN", h.socket(chord.outputs, "Value"), 0.5 * SKY_SUN_SIZE,
+    inside = h.math(tree, "LESS_THAN", h.socket(chord.outputs, "Value"), DISC_EDGE_DEFAULT,
                     label="Within the Disc (its radius, driven)")
     inside.name = DISC_EDGE
     radiance = h.add_node(tree, "ShaderNodeVectorMath", operation="SCALE", label="Disc Radiance")
     h.link(tree, light, radiance.inputs[0])
     h.link(tree, inside.outputs[0], radiance.inputs["Scale"])
     disc = h.add_node(tree, "ShaderNodeBackground", name=DISC, label="Sun Disc (EEVEE draws none)",
-                      inputs={"Strength": 1.0 / sky_sun.disc_solid_angle(SKY_SUN_SIZE)})
+                      inputs={"Strength": DISC_STRENGTH_DEFAULT})
     h.link(tree, radiance.outputs[0], disc.inputs["Color"])
     both = h.add_node(tree, "ShaderNodeAddShader", label="Sky + Disc")
     h.link(tree, shown, both.inputs[0])
@@ -196,9 +198,9 @@ def _follow_disc_size(tree, sun):
     edge, disc = own.node(tree, DISC_EDGE), own.node(tree, DISC)
     if edge is None or disc is None:
         return
-    for socket, expression, value in ((edge.inputs[1], DISC_EDGE_EXPRESSION, 0.5 * SKY_SUN_SIZE),
-                                      (disc.inputs["Strength"], DISC_STRENGTH_EXPRESSION,
-                                       1.0 / sky_sun.disc_solid_angle(SKY_SUN_SIZE))):
+    follows = ((edge.inputs[1], DISC_EDGE_EXPRESSION, DISC_EDGE_DEFAULT),
+               (disc.inputs["Strength"], DISC_STRENGTH_EXPRESSION, DISC_STRENGTH_DEFAULT))
+    for socket, expression, value in follows:
         if sun is None:
             socket.driver_remove("default_value")
             socket.default_value = value
