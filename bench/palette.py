@@ -40,18 +40,6 @@ def palette(pixels):
             float(np.median(shade @ LUMINANCE)), float(np.median(shade_saturation)))
 
 
-def read_display(bpy, path):
-    image = bpy.data.images.load(str(path), check_existing=False)
-    image.colorspace_settings.name = "Non-Color"
-    try:
-        width, height = image.size
-        pixels = np.empty(width * height * 4, np.float32)
-        image.pixels.foreach_get(pixels)
-    finally:
-        bpy.data.images.remove(image)
-    return pixels.reshape(height, width, 4)[..., :3]
-
-
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--frames", type=int, nargs="+", default=list(FRAMES))
@@ -60,6 +48,8 @@ def main(argv=None):
     args = parser.parse_args(argv)
     sandscape, scene = session.demo_scene()
     import bpy
+
+    from devtools import readback
 
     scene.render.resolution_x, scene.render.resolution_y = RESOLUTION
     bpy.ops.sandscape.apply_quality_preset(preset="PREVIEW")
@@ -79,7 +69,7 @@ def main(argv=None):
             path = out / f"{frame}_{shift:+.1f}.png"
             render.save_render(str(path), scene=scene)
             bpy.data.images.remove(render)
-            rows.append((frame, shift, palette(read_display(bpy, path))))
+            rows.append((frame, shift, palette(readback.read_image(path, "Non-Color")[..., :3])))
             print(rows[-1], flush=True)
         scene.view_settings.exposure = demo_exposure
     flags = [f"--frames {' '.join(map(str, args.frames))}"] if args.frames != list(FRAMES) else []

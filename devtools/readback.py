@@ -102,6 +102,11 @@ def render_display(scene, path):
 def _render_and_read(scene, path, colorspace=None):
     scene.render.filepath = str(path)
     bpy.ops.render.render(write_still=True, scene=scene.name)
+    return read_image(path, colorspace)
+
+
+def read_image(path, colorspace=None):
+    """An image file's pixels: (H, W, 4) float32, rows bottom-up (`colorspace`: read it as that)."""
     image = bpy.data.images.load(str(path), check_existing=False)
     if colorspace:
         image.colorspace_settings.name = colorspace
