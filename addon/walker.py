@@ -55,10 +55,8 @@ def ensure_walker(scene, terrain, start, end, sway=SWAY):
         walker = _new_walker(scene, path)
     elif walker.get(FIGURE_SHAPE_KEY) != FIGURE_SHAPE:  # an older figure's body: the robe replaces it
         cloak = own.slot_material(walker, own.CLOAK)
-        old, walker.data = walker.data, figure_mesh(units.to_units(scene, 1.0))
+        walker_gait.swap_mesh(walker, figure_mesh(units.to_units(scene, 1.0)))
         walker.data.materials.append(cloak or _cloak_material())
-        if old.users == 0:
-            bpy.data.meshes.remove(old)
     walker[FIGURE_SHAPE_KEY] = FIGURE_SHAPE
     _stay_upright(walker)
     _animate(walker, start, end)

@@ -44,6 +44,13 @@ def limbs(walker):
             if child.get(own.OBJECT_KEY) == own.WALKER_LIMB and child.get(LIMB_KEY) in LIMBS}
 
 
+def swap_mesh(obj, mesh):
+    """Give `obj` a new mesh; the old one goes if nothing else uses it."""
+    old, obj.data = obj.data, mesh
+    if old.users == 0:
+        bpy.data.meshes.remove(old)
+
+
 def _limb_mesh(name, bottom, top, length, scale):
     bm = bmesh.new()
     # bmesh's cone is centred on its origin, its axis along Z: hang it from its top.
@@ -80,9 +87,7 @@ def ensure_limbs(walker, material, scale, stance):
                 collection.objects.link(limb)
             found[name] = limb
         elif limb.get(SHAPE_KEY) != SHAPE:
-            old, limb.data = limb.data, mesh
-            if old.users == 0:
-                bpy.data.meshes.remove(old)
+            swap_mesh(limb, mesh)
         limb[SHAPE_KEY] = SHAPE
         limb.parent = found[HUNG_FROM[name]] if name in HUNG_FROM else walker
         limb.rotation_mode = "XYZ"

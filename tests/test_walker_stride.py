@@ -118,8 +118,6 @@ def test_each_foot_lands_on_its_print(sandscape, stride):
     assert 0.0 < lead
 
 
-
-
 def test_the_robe_hides_the_thighs_and_the_arms_swing_clear_of_it(sandscape):
     """The stand-in's robe (flaring from the shoulders to below the knees) against its limbs over
     a walk at a long stride: every thigh vertex above the hem stays inside the robe's elliptic
