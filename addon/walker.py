@@ -25,16 +25,27 @@ PATH_STEP = 0.25  # metres between path points laid on the ground
 SWAY = 0.1  # the S reaches a tenth of its length to either side: it turns up to 32 degrees
 TERRAIN_SHARE = 0.8  # the walk never leaves the middle 80 % of the terrain (slower if it must)
 HEIGHT = 1.7  # metres: a person-sized stand-in
-CLOAK = (0.2, 0.035, 0.022, 1.0)  # linear: a deep red cloak against the sand (the traveller of seed 004)
+CLOAK = (0.36, 0.03, 0.02, 1.0)  # linear: a red cloak against the sand (the traveller of seed 004)
+# Cloth's sheen (weight, roughness): seen from behind against a low sun ahead, the cloak's edges catch
+# the light as cloth does instead of the whole figure reading as one dark cut-out.
+CLOAK_SHEEN = (1.0, 0.3)
 GAIT_KEY = "sandscape_stride"  # on the walker: what its limbs were keyed for
 # A robe from the shoulders to below the knees, flaring as the traveller's cloak of seed 004 does
 # (a box-like torso over bare legs read as a mannequin): radius at the hem, at the shoulders, the
 # hem's height over the soles, and its depth front to back against its width.
 ROBE = (0.3, 0.19, 0.5, 0.7)
 SHOULDERS = 1.42  # metres over the soles
-FIGURE_SHAPE_KEY, FIGURE_SHAPE = "sandscape_figure_shape", 2  # 2: the robe (1: a torso over the hips)
+# 3: the robe and a hood (2: the robe under a bare head on a neck; 1: a torso over the hips)
+FIGURE_SHAPE_KEY, FIGURE_SHAPE = "sandscape_figure_shape", 3
 HEAD = 0.11  # radius; its top at HEIGHT
-NECK = (0.05, 0.06, 0.14)  # radius at the top, at the bottom, length: from inside the torso into the head
+HEAD_FORWARD = 0.035  # metres: the face fills the hood's opening
+# Above the robe's shoulders, as (height over the soles, radius, depth against width): the
+# shoulders slope into a hood rounding the head and ending in a peak that falls back, the
+# traveller's of seed 004 (square shoulders and a ball on a neck read as a mannequin).
+HOOD = ((1.46, 0.155, 0.8), (1.5, 0.1, 0.95), (1.56, 0.125, 1.0), (1.64, 0.132, 1.0), (1.71, 0.115, 1.0),
+        (1.77, 0.075, 1.0), (1.82, 0.02, 1.0))
+HOOD_FALL = 0.07  # metres the peak falls back
+ROBE_SEGMENTS = 24
 
 
 def frame_range_problem(start, end):
@@ -144,26 +155,32 @@ def ground_heights(scene, terrain, xy, top):
 
 
 def figure_mesh(scale):
-    """A low-poly figure's body standing on its origin facing +X, HEIGHT tall: a robe broader
-    across than deep, a neck, a head (its limbs are walker_gait's, the legs swinging inside the
-    robe and the shins showing below it). `scale`: scene units per metre."""
-    bm = bmesh.new()
+    """A low-poly figure's body standing on its origin facing +X: a robe broader across than deep
+    whose shoulders slope into a peaked hood, a head (its limbs are walker_gait's, the legs swinging
+    inside the robe and the shins showing below it). `scale`: scene units per metre."""
     hem_radius, shoulder_radius, hem, depth_share = ROBE
-    robe = Matrix.Translation((0.0, 0.0, (hem + SHOULDERS) / 2))
-    robe = robe @ Matrix.Diagonal((depth_share, 1.0, 1.0, 1.0))
-    bmesh.ops.create_cone(bm, cap_ends=True, segments=20, radius1=hem_radius, radius2=shoulder_radius,
-                          depth=SHOULDERS - hem, matrix=robe)
-    neck_top, neck_bottom, neck_length = NECK  # without it the head floated over the shoulders
-    neck = Matrix.Translation((0.0, 0.0, HEIGHT - 2 * HEAD + 0.04 - neck_length / 2))
-    bmesh.ops.create_cone(bm, cap_ends=True, segments=10, radius1=neck_bottom, radius2=neck_top,
-                          depth=neck_length, matrix=neck)
+    profile = [(hem, hem_radius, depth_share), (SHOULDERS, shoulder_radius, depth_share), *HOOD]
+    bm = bmesh.new()
+    turn = np.linspace(0.0, 2 * np.pi, ROBE_SEGMENTS, endpoint=False)
+    rings = []
+    for height, radius, depth in profile:
+        fall = HOOD_FALL * max(0.0, (height - HOOD[-3][0]) / (HOOD[-1][0] - HOOD[-3][0]))
+        ring = np.stack([depth * radius * np.cos(turn) - fall, radius * np.sin(turn),
+                         np.full_like(turn, height)])
+        rings.append([bm.verts.new(point) for point in ring.T])
+    bm.faces.new(rings[0][::-1])  # the hem, facing down
+    for low, high in zip(rings, rings[1:], strict=False):
+        for i in range(ROBE_SEGMENTS):
+            j = (i + 1) % ROBE_SEGMENTS
+            bm.faces.new((low[i], low[j], high[j], high[i]))
+    bm.faces.new(rings[-1])  # the peak's small top
     bmesh.ops.create_uvsphere(bm, u_segments=12, v_segments=8, radius=HEAD,
-                              matrix=Matrix.Translation((0.0, 0.0, HEIGHT - HEAD)))
+                              matrix=Matrix.Translation((HEAD_FORWARD, 0.0, HEIGHT - HEAD)))
+    walker_gait.shade_smooth_but_edges(bm)
     bmesh.ops.scale(bm, vec=(scale, scale, scale), verts=bm.verts)
     mesh = bpy.data.meshes.new("Sandscape Walker")
     bm.to_mesh(mesh)
     bm.free()
-    mesh.shade_smooth()
     return mesh
 
 
@@ -175,6 +192,8 @@ def _cloak_material():
     if shader is not None:
         shader.inputs["Base Color"].default_value = CLOAK
         shader.inputs["Roughness"].default_value = 0.8
+        for name, value in zip(("Sheen Weight", "Sheen Roughness"), CLOAK_SHEEN, strict=True):
+            shader.inputs[name].default_value = value
     return material
 
 

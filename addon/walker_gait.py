@@ -30,12 +30,15 @@ LIMBS = {"left_thigh": (0.07, 0.09, THIGH, paths.LEFT, HIPS),
          "right_thigh": (0.07, 0.09, THIGH, paths.RIGHT, HIPS),
          "left_shin": (0.055, 0.07, SHIN, paths.LEFT, THIGH),
          "right_shin": (0.055, 0.07, SHIN, paths.RIGHT, THIGH),
-         "left_arm": (0.04, 0.05, 0.6, paths.LEFT, 1.38), "right_arm": (0.04, 0.05, 0.6, paths.RIGHT, 1.38)}
+         "left_arm": (0.055, 0.05, 0.6, paths.LEFT, 1.38), "right_arm": (0.055, 0.05, 0.6, paths.RIGHT, 1.38)}
 HUNG_FROM = {"left_shin": "left_thigh", "right_shin": "right_thigh"}
 # A shin ends in a foot: a box (heel, toe: metres behind and ahead of the ankle; width; height)
 # centred on the ankle as the print is, so the foot fills the print it stands in.
 FOOT = (0.12, 0.14, 0.09, 0.07)
-SHAPE_KEY, SHAPE = "sandscape_limb_shape", 2  # 2: shins with feet (limbs before that had none)
+# 3: sleeves widening to the wrist from a rounded shoulder, caps shaded sharp; 2: shins with feet
+# (limbs before that had none)
+SHAPE_KEY, SHAPE = "sandscape_limb_shape", 3
+SHARP_ANGLE = 0.9  # radians: caps and rims keep their edges; the sides shade smooth
 
 
 def limbs(walker):
@@ -51,20 +54,31 @@ def swap_mesh(obj, mesh):
         bpy.data.meshes.remove(old)
 
 
+def shade_smooth_but_edges(bm):
+    """Smooth faces, sharp edges where faces meet at over SHARP_ANGLE (a smoothed cap darkens the
+    side it meets, and a limb reads as a box)."""
+    for face in bm.faces:
+        face.smooth = True
+    for edge in bm.edges:
+        edge.smooth = not (edge.is_manifold and edge.calc_face_angle(0.0) > SHARP_ANGLE)
+
+
 def _limb_mesh(name, bottom, top, length, scale):
     bm = bmesh.new()
     # bmesh's cone is centred on its origin, its axis along Z: hang it from its top.
     bmesh.ops.create_cone(bm, cap_ends=True, segments=10, radius1=bottom * scale, radius2=top * scale,
                           depth=length * scale, matrix=Matrix.Translation((0.0, 0.0, -length * scale / 2)))
+    if name.endswith("Arm"):  # a rounded shoulder, not a cylinder's flat top
+        bmesh.ops.create_uvsphere(bm, u_segments=10, v_segments=6, radius=top * scale)
     if name.endswith("Shin"):
         heel, toe, width, height = (value * scale for value in FOOT)
         box = Matrix.Translation(((toe - heel) / 2, 0.0, -length * scale + height / 2))
         box = box @ Matrix.Diagonal((heel + toe, width, height, 1.0))
         bmesh.ops.create_cube(bm, size=1.0, matrix=box)
+    shade_smooth_but_edges(bm)
     mesh = bpy.data.meshes.new(name)
     bm.to_mesh(mesh)
     bm.free()
-    mesh.shade_smooth()
     return mesh
 
 
