@@ -85,37 +85,46 @@ def test_the_frame_keeps_the_grains_share_of_mirror(sandscape):
     assert abs(ground_rows.mean() / (1 - THRESHOLD) - 1) <= 0.10
 
 
-def glint_noise(sandscape, filter_width, samples=64, reference_samples=256):
-    """RMSE between two seeds at `samples` over the glint pixels (display values, the bare sand's
-    median at 0.5, clipped at 1), divided by √2: one render's noise."""
-    from devtools import results, sparkles
+def render_sparkling_sand(sandscape, filter_width, seed, samples, glints=True):
+    from devtools import sparkles
 
-    def render(seed, spp, glints=True):
-        session.reset()
-        scene = sparkles.sparkling_sand(sandscape, (160, 90), True, spp, seed)
-        scene.cycles.filter_width = filter_width
-        if not glints:
-            material = bpy.context.scene.objects["Plane"].active_material
-            sandscape.addon.sand.glint_node(material).inputs["Threshold"].default_value = 1.0
-        return readback.render(scene)[..., :3]
+    session.reset()
+    scene = sparkles.sparkling_sand(sandscape, (160, 90), True, samples, seed)
+    scene.cycles.filter_width = filter_width
+    if not glints:
+        material = bpy.context.scene.objects["Plane"].active_material
+        sandscape.addon.sand.glint_node(material).inputs["Threshold"].default_value = 1.0
+    return readback.render(scene)[..., :3]
 
-    bare = render(99, reference_samples, glints=False)
+
+def glint_pixels(sandscape, filter_width, reference_samples=128):
+    """The pixels sparkles change (by over 0.05 in display values, the bare sand's median at 0.5,
+    clipped at 1) in a render of one seed, and that scale."""
+    bare = render_sparkling_sand(sandscape, filter_width, 99, reference_samples, glints=False)
     scale = 0.5 / float(np.median(bare))
-    reference = render(99, reference_samples) * scale
-    glints = np.abs(np.minimum(reference, 1) - np.minimum(bare * scale, 1)).max(-1) > 0.05
-    first, second = render(0, samples) * scale, render(1, samples) * scale
-    return results.clipped_rmse(first[glints], second[glints], 1.0) / math.sqrt(2), glints.mean()
+    reference = render_sparkling_sand(sandscape, filter_width, 99, reference_samples) * scale
+    return np.abs(np.minimum(reference, 1) - np.minimum(bare * scale, 1)).max(-1) > 0.05, scale
+
+
+def glint_noise(sandscape, filter_width, glints, scale, samples=64):
+    """RMSE between two seeds at `samples` over the glint pixels, divided by √2: one render's noise."""
+    from devtools import results
+
+    first, second = (render_sparkling_sand(sandscape, filter_width, seed, samples) * scale for seed in (0, 1))
+    return results.clipped_rmse(first[glints], second[glints], 1.0) / math.sqrt(2)
 
 
 def test_glint_pixels_converge_at_64_samples(sandscape):
     """With the sharp pixel filter (half a pixel, the preset operator's option) every sample stays
     in its pixel and finds the pixel's sparkles: 64 samples within 0.03. Blender's 1.5 px filter
     puts two in five samples in the neighbours, and the noise is over that (yet half the cells')."""
-    sharp, share = glint_noise(sandscape, sandscape.addon.presets.SHARP_FILTER["filter_width"])
-    wide, _ = glint_noise(sandscape, 1.5)
-    print(f"glint pixels ({share:.1%} of the frame): noise at 64 spp {sharp:.4f} with the sharp "
+    sharp_width = sandscape.addon.presets.SHARP_FILTER["filter_width"]
+    glints, scale = glint_pixels(sandscape, sharp_width)
+    sharp = glint_noise(sandscape, sharp_width, glints, scale)
+    wide = glint_noise(sandscape, 1.5, *glint_pixels(sandscape, 1.5))  # the pixels its sparkles reach
+    print(f"glint pixels ({glints.mean():.1%} of the frame): noise at 64 spp {sharp:.4f} with the sharp "
           f"filter, {wide:.4f} with Blender's")
-    assert share > 0.02
+    assert glints.mean() > 0.02
     assert sharp <= 0.03 < wide
 
 
