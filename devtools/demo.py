@@ -20,6 +20,9 @@ sys.path.insert(0, str(REPO))
 from devtools import session  # noqa: E402
 
 ANIMATION_FRAMES = (1, 60, 120, 180, 240)
+# The still and the poster: the trail in the sun from the frame's foot to the walker, its shadow
+# running beside it (on frames 80-150 the trail lies in that shadow), the low sun and clouds in view.
+HERO_FRAME = 60
 QUALITIES = {"draft": ("DRAFT", 640, 360), "preview": ("PREVIEW", 640, 360), "final": ("FINAL", 1280, 720)}
 
 
@@ -49,7 +52,7 @@ def main(argv=None):
     parser.add_argument("--width", type=int, help="the still's width (with --height), not the quality's")
     parser.add_argument("--height", type=int)
     parser.add_argument("--samples", type=int, help="override the preset's samples for the still")
-    parser.add_argument("--frame", type=int, default=120, help="frame of the still")
+    parser.add_argument("--frame", type=int, default=HERO_FRAME, help="frame of the still")
     parser.add_argument("--no-animation", action="store_true", help="skip the animation frames")
     args = parser.parse_args(argv)
     preset, width, height = QUALITIES[args.quality]
