@@ -1,6 +1,7 @@
 # make demo: venv + pinned deps, build the demo scene headless, save out/demo.blend, render out/demo.png
 # make demo-blend: regenerate the committed demo.blend (after a change to the demo or a node group)
 # make test: venv + pinned deps, ruff, then the pytest suite but its stress tests, on up to 4 workers
+# (work-stealing: a worker left idle at the end takes tests queued on the other), its 15 slowest listed
 # make stress: the stress tests (settings at their extremes, the largest maps); CI runs both
 #
 # BLENDER picks the bpy the commands run on, each in its own venv:
@@ -46,7 +47,7 @@ lint: $(STAMP)
 	$(VENV)/bin/ruff check .
 
 test: lint
-	$(PY) -m pytest -m "not stress" -n auto --maxprocesses=4
+	$(PY) -m pytest -m "not stress" -n auto --maxprocesses=4 --dist worksteal --durations=15
 
 stress: $(STAMP)
 	$(PY) -m pytest -m stress
