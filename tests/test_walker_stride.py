@@ -153,3 +153,25 @@ def test_the_robe_hides_the_thighs_and_the_arms_swing_clear_of_it(sandscape):
     thighs, arms = np.concatenate(thighs), np.concatenate(arms)
     print(f"thighs reach {thighs.max():.2f} of the robe, arms come within {arms.min():.2f}")
     assert thighs.max() < 1.0 and arms.min() > 1.0
+
+
+def test_the_hood_hides_the_head_from_behind_and_shows_the_face(sandscape):
+    """The figure's hood against its head, in the figure's own space: every head vertex behind the
+    head's centre lies inside the hood's elliptic section at its height (a camera behind the walker
+    sees a hood, not a ball), and the face in front reaches out of it."""
+    walker_module = sandscape.addon.walker
+    mesh = walker_module.figure_mesh(1.0)
+    points = np.array([v.co[:] for v in mesh.vertices])
+    bpy.data.meshes.remove(mesh)
+    centre = np.array([walker_module.HEAD_FORWARD, 0.0, walker_module.HEIGHT - walker_module.HEAD])
+    head = points[np.abs(np.linalg.norm(points - centre, axis=1) - walker_module.HEAD) < 1e-4]
+    heights, radii, depths = np.array(walker_module.HOOD).T
+
+    def hood_share(local):  # under 1 inside the hood's section at the point's height (no fall there)
+        radius, depth = np.interp(local[:, 2], heights, radii), np.interp(local[:, 2], heights, depths)
+        return np.hypot(local[:, 0] / (depth * radius), local[:, 1] / radius)
+
+    assert len(head) >= 50 and heights[0] < head[:, 2].min() and head[:, 2].max() < heights[-3]
+    back, front = hood_share(head[head[:, 0] <= centre[0]]), hood_share(head[head[:, 0] > centre[0]])
+    print(f"the back of the head reaches {back.max():.2f} of the hood, the face {front.max():.2f}")
+    assert back.max() < 1.0 < front.max()
