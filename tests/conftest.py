@@ -17,16 +17,6 @@ import pytest  # noqa: E402
 SANDSCAPE = session.install_dev_extension(USER_ROOT)
 
 
-# Modules whose tests take 20-60 s each on two workers (make test's --durations list). They run
-# first: the work-stealing workers then end on short tests, and neither waits long for the other.
-SLOW_MODULES = ("test_glint_splat", "test_denoise_but_glints", "test_eevee", "test_demo_without_addon",
-                "test_cli", "test_footprint_eye_level", "test_clouds", "test_eevee_sun_disc")
-
-
-def pytest_collection_modifyitems(items):
-    items.sort(key=lambda item: item.module.__name__ not in SLOW_MODULES)  # stable: otherwise in order
-
-
 @pytest.fixture(autouse=True)
 def empty_file():
     session.reset()
