@@ -26,8 +26,8 @@ SWAY = 0.1  # the S reaches a tenth of its length to either side: it turns up to
 TERRAIN_SHARE = 0.8  # the walk never leaves the middle 80 % of the terrain (slower if it must)
 HEIGHT = 1.7  # metres: a person-sized stand-in
 CLOAK = (0.36, 0.03, 0.02, 1.0)  # linear: a red cloak against the sand (the traveller of seed 004)
-# Cloth's sheen (weight, roughness): seen from behind against a low sun ahead, the cloak's edges catch
-# the light as cloth does instead of the whole figure reading as one dark cut-out.
+# Cloth's sheen (weight, roughness): a fabric's soft grazing lobe. It does not rim the figure against
+# a low sun ahead (README, the fourth review); whether it pales the cloak is not yet measured.
 CLOAK_SHEEN = (1.0, 0.3)
 GAIT_KEY = "sandscape_stride"  # on the walker: what its limbs were keyed for
 # A robe from the shoulders to below the knees, flaring as the traveller's cloak of seed 004 does
