@@ -7,6 +7,7 @@ operator runs in, so running it again updates them and another scene gets its ow
 swing to the prints' stride (walker_gait).
 """
 
+import itertools
 import math
 
 import bmesh
@@ -162,14 +163,15 @@ def figure_mesh(scale):
     profile = [(hem, hem_radius, depth_share), (SHOULDERS, shoulder_radius, depth_share), *HOOD]
     bm = bmesh.new()
     turn = np.linspace(0.0, 2 * np.pi, ROBE_SEGMENTS, endpoint=False)
+    fall_from, peak = HOOD[-3][0], HOOD[-1][0]  # above the head's top the hood falls back
     rings = []
     for height, radius, depth in profile:
-        fall = HOOD_FALL * max(0.0, (height - HOOD[-3][0]) / (HOOD[-1][0] - HOOD[-3][0]))
+        fall = HOOD_FALL * max(0.0, (height - fall_from) / (peak - fall_from))
         ring = np.stack([depth * radius * np.cos(turn) - fall, radius * np.sin(turn),
                          np.full_like(turn, height)])
         rings.append([bm.verts.new(point) for point in ring.T])
     bm.faces.new(rings[0][::-1])  # the hem, facing down
-    for low, high in zip(rings, rings[1:], strict=False):
+    for low, high in itertools.pairwise(rings):
         for i in range(ROBE_SEGMENTS):
             j = (i + 1) % ROBE_SEGMENTS
             bm.faces.new((low[i], low[j], high[j], high[i]))
