@@ -2,7 +2,8 @@
 # make demo-blend: regenerate the committed demo.blend (after a change to the demo or a node group)
 # make test: venv + pinned deps, ruff, then the pytest suite but its stress tests, on up to 4 workers
 # (work-stealing: a worker left idle at the end takes tests queued on the other), its 15 slowest listed
-# make stress: the stress tests (settings at their extremes, the largest maps); CI runs both
+# make stress: the stress tests (settings at their extremes, the largest maps) and the further
+# settings of checks make test runs at one or two (EEVEE's other sun elevations); CI runs both
 #
 # BLENDER picks the bpy the commands run on, each in its own venv:
 #   5.2 (default, the current LTS): bpy 5.2.3 on Python 3.13, .venv, requirements.txt
@@ -47,10 +48,10 @@ lint: $(STAMP)
 	$(VENV)/bin/ruff check .
 
 test: lint
-	$(PY) -m pytest -m "not stress" -n auto --maxprocesses=4 --dist worksteal --durations=15
+	$(PY) -m pytest -m "not stress and not sweep" -n auto --maxprocesses=4 --dist worksteal --durations=15
 
 stress: $(STAMP)
-	$(PY) -m pytest -m stress
+	$(PY) -m pytest -m "stress or sweep"
 
 bench: $(STAMP)
 	$(PY) -m pip install --disable-pip-version-check -q -r requirements-bench.txt

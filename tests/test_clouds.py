@@ -56,7 +56,7 @@ def transmittance_up(resolution=96, **values):
     return readback.render(scene)[..., 0]
 
 
-@pytest.mark.parametrize("seed", [0, 7])
+@pytest.mark.parametrize("seed", [0, pytest.param(7, marks=pytest.mark.sweep)])
 def test_coverage_is_the_share_of_sky_under_cloud(seed):
     covered = {}
     for coverage in (0.2, 0.5, 0.8):
@@ -276,6 +276,7 @@ STRESS = [
 ]
 
 
+@pytest.mark.stress
 @pytest.mark.parametrize("props", STRESS)
 def test_extreme_settings_render_finite(props):
     scene = bpy.context.scene
@@ -293,6 +294,7 @@ def test_extreme_settings_render_finite(props):
     assert has_layer == (props.get("coverage") != 0.0)
 
 
+@pytest.mark.stress
 def test_extreme_wind_renders_finite():
     scene = bpy.context.scene
     scenes.camera("PERSP", location=(0.0, 0.0, 2.0), rotation=(math.radians(75.0), 0.0, 0.0), lens=20.0)

@@ -285,7 +285,8 @@ def gross_transport_trend(winds):
     return math.degrees(normals[np.argmax(gross)])
 
 
-@pytest.mark.parametrize("second, share", [(120.0, 0.5), (150.0, 0.5), (120.0, 0.3)])
+@pytest.mark.parametrize("second, share", [(120.0, 0.5), (150.0, 0.5),
+                                            pytest.param(120.0, 0.3, marks=pytest.mark.sweep)])
 def test_two_winds_follow_the_gross_transport_rule(second, share):
     blowing, frame = dunes.winds(math.radians(second), share)
     field = dune_field.grow((160, 160), dunes.supply_slabs(3.0), 0, blowing)

@@ -1,5 +1,7 @@
 """EEVEE renders, few and small (issue 27): EEVEE needs an OpenGL context, which the bpy wheel
-opens through EGL, on software OpenGL here. Where none can be made these tests skip and say so."""
+opens through EGL, on software OpenGL here. Where none can be made these tests skip and say so.
+Each check runs at one or two settings in `make test`; its other settings (marked sweep, 10-30 s
+a render on software OpenGL) run in `make stress`, which CI runs after it."""
 
 import math
 
@@ -157,7 +159,7 @@ def test_dust_transmittance_per_channel_in_eevee(eevee_scene, sandscape):
     assert measured[2] < measured[1] < measured[0]
 
 
-@pytest.mark.parametrize("elevation", [15.0, 70.0])
+@pytest.mark.parametrize("elevation", [15.0, pytest.param(70.0, marks=pytest.mark.sweep)])
 def test_sand_in_eevee_is_as_bright_as_in_cycles(eevee_scene, sandscape, elevation):
     """Flat sand with ripples under Add Atmosphere's sun, dust and haze, at eye level: EEVEE's mean
     over the ground near Cycles' (issue 27 asks 15 %) with the sand's EEVEE output, and at most half
@@ -189,7 +191,7 @@ def test_sand_in_eevee_is_as_bright_as_in_cycles(eevee_scene, sandscape, elevati
     assert abs(balanced / cycles - 1.0) <= 0.5 * abs(plain / cycles - 1.0)
 
 
-@pytest.mark.parametrize("elevation", [10, 30, 60])
+@pytest.mark.parametrize("elevation", [10, pytest.param(30, marks=pytest.mark.sweep), 60])
 def test_journey_sphere_in_eevee_is_the_seeds_contrast(eevee_scene, sandscape, elevation):
     """Journey's material on a sphere in EEVEE, lit by a scene sun it was not built with: its EEVEE
     output's diffuse is the seed's saturate(4 N'.L) / 2 pi within 0.05 (intensity 0..1). EEVEE
@@ -261,7 +263,7 @@ def test_clouds_cover_their_share_of_sky_in_eevee(eevee_scene):
     assert covered == pytest.approx(0.5, abs=COVERAGE_TOLERANCE)
 
 
-@pytest.mark.parametrize("elevation", [6.0, 30.0])
+@pytest.mark.parametrize("elevation", [6.0, pytest.param(30.0, marks=pytest.mark.sweep)])
 def test_the_sky_lights_the_ground_in_eevee_as_in_cycles(eevee_scene, sandscape, elevation):
     """A grey plane lit by Add Atmosphere's sky alone (the lamp hidden), from above: EEVEE's mean
     colour against Cycles' exact integral of the sky, per channel. Through the world's EEVEE output
@@ -293,8 +295,9 @@ def test_the_sky_lights_the_ground_in_eevee_as_in_cycles(eevee_scene, sandscape,
     assert np.abs(plain / cycles - 1.0).max() > 2 * SKY_TOLERANCE
 
 
-@pytest.mark.parametrize("above,below,clamp", [(1.0, 0.0, 0.0), (9.0, 1.0, 0.0), (2.5, 23.0, 0.0),
-                                               (2.5, 23.0, 10.0)])
+@pytest.mark.parametrize("above,below,clamp", [pytest.param(1.0, 0.0, 0.0, marks=pytest.mark.sweep),
+                                               pytest.param(9.0, 1.0, 0.0, marks=pytest.mark.sweep),
+                                               (2.5, 23.0, 0.0), (2.5, 23.0, 10.0)])
 def test_eevee_lights_from_two_hemispheres_as_its_twin_says(eevee_scene, sandscape, above, below, clamp):
     """A white plane facing up, then down, under a world of two uniform hemispheres (radiance
     `above` and `below`) with Clamp Surface Indirect `clamp`: EEVEE's light against the twin of
@@ -335,7 +338,7 @@ def test_eevee_lights_from_two_hemispheres_as_its_twin_says(eevee_scene, sandsca
         bpy.data.objects.remove(camera)
 
 
-@pytest.mark.parametrize("elevation", [12.0, 45.0])
+@pytest.mark.parametrize("elevation", [12.0, pytest.param(45.0, marks=pytest.mark.sweep)])
 def test_the_lit_sand_lights_a_wall_in_eevee_as_in_cycles(eevee_scene, sandscape, elevation):
     """A grey wall standing on sand, its face edge-on to the sun so only the sky and the lit sand
     light it (as they light a walker's shaded side): EEVEE, which bounces no light, gets the sand's

@@ -15,7 +15,7 @@ HUE_RANGE = (20.0, 50.0)  # the look references' 25-45 degrees, with 5 degrees f
 MIN_SATURATION = 0.2
 
 
-@pytest.mark.parametrize("elevation", (5, 20, 50))
+@pytest.mark.parametrize("elevation", (5, pytest.param(20, marks=pytest.mark.sweep), 50))
 def test_lit_sand_reads_as_sand(sandscape, elevation, tmp_path):
     terrain = scenes.height_field(400.0, 40, lambda x, y: 1.5 * np.sin(x / 23.0) * np.cos(y / 31.0),
                                   name="Their Ground")
