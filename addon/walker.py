@@ -7,17 +7,15 @@ operator runs in, so running it again updates them and another scene gets its ow
 swing to the prints' stride (walker_gait).
 """
 
-import itertools
 import math
 
-import bmesh
 import bpy
 import numpy as np
 from bpy_extras import anim_utils
-from mathutils import Matrix, Vector
+from mathutils import Vector
 from mathutils.bvhtree import BVHTree
 
-from . import evaluation, units, walker_gait
+from . import evaluation, units, walker_figure, walker_gait
 from . import ownership as own
 from .footprint_terrain import frame_list, sample_walker
 
@@ -25,28 +23,7 @@ WALK_SPEED = 1.4  # metres per second: a walking pace
 PATH_STEP = 0.25  # metres between path points laid on the ground
 SWAY = 0.1  # the S reaches a tenth of its length to either side: it turns up to 32 degrees
 TERRAIN_SHARE = 0.8  # the walk never leaves the middle 80 % of the terrain (slower if it must)
-HEIGHT = 1.7  # metres: a person-sized stand-in
-CLOAK = (0.36, 0.03, 0.02, 1.0)  # linear: a red cloak against the sand (the traveller of seed 004)
-# Cloth's sheen (weight, roughness): a fabric's soft grazing lobe. It does not rim the figure against
-# a low sun ahead (README, the fourth review); whether it pales the cloak is not yet measured.
-CLOAK_SHEEN = (1.0, 0.3)
 GAIT_KEY = "sandscape_stride"  # on the walker: what its limbs were keyed for
-# A robe from the shoulders to below the knees, flaring as the traveller's cloak of seed 004 does
-# (a box-like torso over bare legs read as a mannequin): radius at the hem, at the shoulders, the
-# hem's height over the soles, and its depth front to back against its width.
-ROBE = (0.3, 0.19, 0.5, 0.7)
-SHOULDERS = 1.42  # metres over the soles
-# 3: the robe and a hood (2: the robe under a bare head on a neck; 1: a torso over the hips)
-FIGURE_SHAPE_KEY, FIGURE_SHAPE = "sandscape_figure_shape", 3
-HEAD = 0.11  # radius; its top at HEIGHT
-HEAD_FORWARD = 0.035  # metres: the face fills the hood's opening
-# Above the robe's shoulders, as (height over the soles, radius, depth against width): the
-# shoulders slope into a hood rounding the head and ending in a peak that falls back, the
-# traveller's of seed 004 (square shoulders and a ball on a neck read as a mannequin).
-HOOD = ((1.46, 0.155, 0.8), (1.5, 0.1, 0.95), (1.56, 0.125, 1.0), (1.64, 0.132, 1.0), (1.71, 0.115, 1.0),
-        (1.77, 0.075, 1.0), (1.82, 0.02, 1.0))
-HOOD_FALL = 0.07  # metres the peak falls back
-ROBE_SEGMENTS = 24
 
 
 def frame_range_problem(start, end):
@@ -65,11 +42,12 @@ def ensure_walker(scene, terrain, start, end, sway=SWAY):
     walker = own.scene_object(scene, own.WALKER)
     if walker is None:
         walker = _new_walker(scene, path)
-    elif walker.get(FIGURE_SHAPE_KEY) != FIGURE_SHAPE:  # an older figure's body: the robe replaces it
-        cloak = own.slot_material(walker, own.CLOAK)
-        walker_gait.swap_mesh(walker, figure_mesh(units.to_units(scene, 1.0)))
-        walker.data.materials.append(cloak or _cloak_material())
-    walker[FIGURE_SHAPE_KEY] = FIGURE_SHAPE
+    elif walker.get(walker_figure.FIGURE_SHAPE_KEY) != walker_figure.FIGURE_SHAPE:
+        # an older figure's body: this one replaces it, in the materials it wore
+        cloth = walker_figure.Cloth(walker)
+        walker_gait.swap_mesh(walker, walker_figure.figure_mesh(units.to_units(scene, 1.0)))
+        walker_figure.dress(walker, cloth)
+    walker[walker_figure.FIGURE_SHAPE_KEY] = walker_figure.FIGURE_SHAPE
     _stay_upright(walker)
     _animate(walker, start, end)
     update_stride(scene, walker, start, end)
@@ -79,7 +57,7 @@ def ensure_walker(scene, terrain, start, end, sway=SWAY):
 def update_stride(scene, walker, start, end):
     """Key the stand-in's limbs to the prints' stride and stance (the scene's footprint settings)."""
     steps, scale = scene.sandscape_footprints, units.to_units(scene, 1.0)
-    walker_gait.ensure_limbs(walker, own.slot_material(walker, own.CLOAK), scale, steps.stance)
+    walker_gait.ensure_limbs(walker, walker_figure.Cloth(walker), scale, steps.stance)
     frames = frame_list(start, end)
     walker_gait.key_stride(walker, sample_walker(scene, walker, frames), frames, steps.stride, scale)
     walker[GAIT_KEY] = stride_keyed_for(scene, start, end)
@@ -155,55 +133,11 @@ def ground_heights(scene, terrain, xy, top):
     return heights
 
 
-def figure_mesh(scale):
-    """A low-poly figure's body standing on its origin facing +X: a robe broader across than deep
-    whose shoulders slope into a peaked hood, a head (its limbs are walker_gait's, the legs swinging
-    inside the robe and the shins showing below it). `scale`: scene units per metre."""
-    hem_radius, shoulder_radius, hem, depth_share = ROBE
-    profile = [(hem, hem_radius, depth_share), (SHOULDERS, shoulder_radius, depth_share), *HOOD]
-    bm = bmesh.new()
-    turn = np.linspace(0.0, 2 * np.pi, ROBE_SEGMENTS, endpoint=False)
-    fall_from, peak = HOOD[-3][0], HOOD[-1][0]  # above the head's top the hood falls back
-    rings = []
-    for height, radius, depth in profile:
-        fall = HOOD_FALL * max(0.0, (height - fall_from) / (peak - fall_from))
-        ring = np.stack([depth * radius * np.cos(turn) - fall, radius * np.sin(turn),
-                         np.full_like(turn, height)])
-        rings.append([bm.verts.new(point) for point in ring.T])
-    bm.faces.new(rings[0][::-1])  # the hem, facing down
-    for low, high in itertools.pairwise(rings):
-        for i in range(ROBE_SEGMENTS):
-            j = (i + 1) % ROBE_SEGMENTS
-            bm.faces.new((low[i], low[j], high[j], high[i]))
-    bm.faces.new(rings[-1])  # the peak's small top
-    bmesh.ops.create_uvsphere(bm, u_segments=12, v_segments=8, radius=HEAD,
-                              matrix=Matrix.Translation((HEAD_FORWARD, 0.0, HEIGHT - HEAD)))
-    walker_gait.shade_smooth_but_edges(bm)
-    bmesh.ops.scale(bm, vec=(scale, scale, scale), verts=bm.verts)
-    mesh = bpy.data.meshes.new("Sandscape Walker")
-    bm.to_mesh(mesh)
-    bm.free()
-    return mesh
-
-
-def _cloak_material():
-    material = own.mark(bpy.data.materials.new("Sandscape Walker Cloak"), own.MATERIAL_KEY, own.CLOAK)
-    material.diffuse_color = CLOAK
-    nodes = material.node_tree.nodes if material.node_tree else ()
-    shader = next((n for n in nodes if n.bl_idname == "ShaderNodeBsdfPrincipled"), None)
-    if shader is not None:
-        shader.inputs["Base Color"].default_value = CLOAK
-        shader.inputs["Roughness"].default_value = 0.8
-        for name, value in zip(("Sheen Weight", "Sheen Roughness"), CLOAK_SHEEN, strict=True):
-            shader.inputs[name].default_value = value
-    return material
-
-
 def _new_walker(scene, path):
-    mesh = figure_mesh(units.to_units(scene, 1.0))
+    mesh = walker_figure.figure_mesh(units.to_units(scene, 1.0))
     walker = own.mark(bpy.data.objects.new("Sandscape Walker", mesh), own.OBJECT_KEY, own.WALKER)
     scene.collection.objects.link(walker)
-    walker.data.materials.append(_cloak_material())
+    walker_figure.dress(walker, walker_figure.Cloth(walker))
     follow = walker.constraints.new("FOLLOW_PATH")
     follow.target = path
     follow.use_curve_follow = True

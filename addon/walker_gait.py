@@ -26,18 +26,20 @@ ARM_SPLAY = np.radians(12.0)  # arms hang out from the body, clear of the walker
 # Tapered cylinders hanging from a pivot: name: (radius at the bottom, at the top, length, side,
 # the pivot's height over the soles, or its drop below the end of the limb it hangs from), metres.
 # A thigh's distance from the middle follows the stance.
-LIMBS = {"left_thigh": (0.07, 0.09, THIGH, paths.LEFT, HIPS),
-         "right_thigh": (0.07, 0.09, THIGH, paths.RIGHT, HIPS),
-         "left_shin": (0.055, 0.07, SHIN, paths.LEFT, THIGH),
-         "right_shin": (0.055, 0.07, SHIN, paths.RIGHT, THIGH),
+LIMBS = {"left_thigh": (0.06, 0.08, THIGH, paths.LEFT, HIPS),
+         "right_thigh": (0.06, 0.08, THIGH, paths.RIGHT, HIPS),
+         "left_shin": (0.045, 0.06, SHIN, paths.LEFT, THIGH),
+         "right_shin": (0.045, 0.06, SHIN, paths.RIGHT, THIGH),
          "left_arm": (0.055, 0.05, 0.6, paths.LEFT, 1.38), "right_arm": (0.055, 0.05, 0.6, paths.RIGHT, 1.38)}
 HUNG_FROM = {"left_shin": "left_thigh", "right_shin": "right_thigh"}
 # A shin ends in a foot: a box (heel, toe: metres behind and ahead of the ankle; width; height)
 # centred on the ankle as the print is, so the foot fills the print it stands in.
 FOOT = (0.12, 0.14, 0.09, 0.07)
-# 3: sleeves widening to the wrist from a rounded shoulder, caps shaded sharp; 2: shins with feet
-# (limbs before that had none)
-SHAPE_KEY, SHAPE = "sandscape_limb_shape", 3
+HAND = 0.045  # radius: a wrapped hand at the sleeve's end
+# 4: legs and hands wrapped in dark cloth, slimmer legs; 3: sleeves widening to the wrist from a
+# rounded shoulder, caps shaded sharp; 2: shins with feet (limbs before that had none)
+SHAPE_KEY, SHAPE = "sandscape_limb_shape", 4
+WRAPS = "walker_wraps"  # the material kind legs and hands wear (walker_figure makes it)
 SHARP_ANGLE = 0.9  # radians: caps and rims keep their edges; the sides shade smooth
 
 
@@ -68,8 +70,12 @@ def _limb_mesh(name, bottom, top, length, scale):
     # bmesh's cone is centred on its origin, its axis along Z: hang it from its top.
     bmesh.ops.create_cone(bm, cap_ends=True, segments=10, radius1=bottom * scale, radius2=top * scale,
                           depth=length * scale, matrix=Matrix.Translation((0.0, 0.0, -length * scale / 2)))
-    if name.endswith("Arm"):  # a rounded shoulder, not a cylinder's flat top
+    if name.endswith("Arm"):  # a rounded shoulder, not a cylinder's flat top; a hand in the wraps
         bmesh.ops.create_uvsphere(bm, u_segments=10, v_segments=6, radius=top * scale)
+        hand = bmesh.ops.create_uvsphere(bm, u_segments=8, v_segments=6, radius=HAND * scale,
+                                         matrix=Matrix.Translation((0.0, 0.0, -(length + HAND / 2) * scale)))
+        for face in {f for v in hand["verts"] for f in v.link_faces}:
+            face.material_index = 1
     if name.endswith("Shin"):
         heel, toe, width, height = (value * scale for value in FOOT)
         box = Matrix.Translation(((toe - heel) / 2, 0.0, -length * scale + height / 2))
@@ -82,9 +88,10 @@ def _limb_mesh(name, bottom, top, length, scale):
     return mesh
 
 
-def ensure_limbs(walker, material, scale, stance):
+def ensure_limbs(walker, cloth, scale, stance):
     """The walker's limbs, made where missing, hung at their pivots (`stance` in scene units,
-    `scale` scene units per metre): thighs and arms from the body, shins from the knees.
+    `scale` scene units per metre): thighs and arms from the body, shins from the knees. `cloth`:
+    {kind: material}; legs wear the wraps, arms the cloak and the wraps at the hand.
     Returns {name: object}."""
     found = limbs(walker)
     collections = walker.users_collection
@@ -93,7 +100,8 @@ def ensure_limbs(walker, material, scale, stance):
         title = "Sandscape Walker " + name.replace("_", " ").title()
         if limb is None or limb.get(SHAPE_KEY) != SHAPE:  # missing, or an older walker's shape
             mesh = _limb_mesh(title, bottom, top, length, scale)
-            mesh.materials.append(material)
+            for kind in (own.CLOAK, WRAPS) if name.endswith("arm") else (WRAPS,):
+                mesh.materials.append(cloth[kind])
         if limb is None:
             limb = bpy.data.objects.new(title, mesh)
             own.mark(limb, own.OBJECT_KEY, own.WALKER_LIMB, **{LIMB_KEY: name})

@@ -235,9 +235,18 @@ def test_add_walker_makes_a_walk_that_paints(walk):
     for shin in (limb for limb in limbs if limb["sandscape_limb"].endswith("shin")):
         along = [v.co.x for v in shin.data.vertices]
         assert max(along) - min(along) == pytest.approx(0.26, abs=1e-5) and max(along) > 0.1
-    cloaks = [m for m in bpy.data.materials if m.get("sandscape_material") == "cloak"]
-    assert len(cloaks) == 1 and walkers[0].active_material == cloaks[0]
-    assert all(limb.active_material == cloaks[0] for limb in limbs)
+    # One cloak, one golden trim, one dark wrap: the body wears the cloak and the trim, the arms
+    # the cloak and the wraps at the hands, the legs the wraps.
+    cloth = {kind: [m for m in bpy.data.materials if m.get("sandscape_material") == kind]
+             for kind in ("cloak", "walker_trim", "walker_wraps")}
+    assert all(len(found) == 1 for found in cloth.values())
+    cloak, trim, wraps = (found[0] for found in cloth.values())
+    assert list(walkers[0].data.materials) == [cloak, trim]
+    assert {face.material_index for face in walkers[0].data.polygons} == {0, 1}  # each worn
+    for limb in limbs:
+        worn = [cloak, wraps] if limb["sandscape_limb"].endswith("arm") else [wraps]
+        assert list(limb.data.materials) == worn
+        assert {face.material_index for face in limb.data.polygons} == set(range(len(worn)))
     assert bpy.ops.sandscape.paint_footprints() == {"FINISHED"}
     assert len(ours("points")[0].data.vertices) >= 2  # 1.25 s at a walking pace, 0.7 m strides
 

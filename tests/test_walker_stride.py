@@ -123,7 +123,7 @@ def test_the_robe_hides_the_thighs_and_the_arms_swing_clear_of_it(sandscape):
     a walk at a long stride: every thigh vertex above the hem stays inside the robe's elliptic
     section at its height, and every arm vertex below the shoulder's curve stays outside it, so
     no limb pokes through the cloth on any frame (measured in the walker's own space)."""
-    walker_module = sandscape.addon.walker
+    walker_module = sandscape.addon.walker_figure
     hem_radius, shoulder_radius, hem, depth_share = walker_module.ROBE
     top = walker_module.SHOULDERS
     terrain = scenes.height_field(30.0, 30, lambda x, y: 0.05 * x, name="Sand")
@@ -159,7 +159,7 @@ def test_the_hood_hides_the_head_from_behind_and_shows_the_face(sandscape):
     """The figure's hood against its head, in the figure's own space: every head vertex behind the
     head's centre lies inside the hood's elliptic section at its height (a camera behind the walker
     sees a hood, not a ball), and the face in front reaches out of it."""
-    walker_module = sandscape.addon.walker
+    walker_module = sandscape.addon.walker_figure
     mesh = walker_module.figure_mesh(1.0)
     points = np.array([v.co[:] for v in mesh.vertices])
     bpy.data.meshes.remove(mesh)
@@ -175,3 +175,23 @@ def test_the_hood_hides_the_head_from_behind_and_shows_the_face(sandscape):
     back, front = hood_share(head[head[:, 0] <= centre[0]]), hood_share(head[head[:, 0] > centre[0]])
     print(f"the back of the head reaches {back.max():.2f} of the hood, the face {front.max():.2f}")
     assert back.max() < 1.0 < front.max()
+
+
+def test_the_scarf_lies_just_outside_the_cloak(sandscape):
+    """The golden scarf (its wrap at the neck and its tail down the back), in the figure's own
+    space: every vertex lies outside the cloth's elliptic section at its height, so none is hidden
+    in the robe or the hood, and within 7 cm of it, so the scarf lies on the figure, not in the air."""
+    figure = sandscape.addon.walker_figure
+    mesh = figure.figure_mesh(1.0)
+    band_top = figure.ROBE[2] + figure.HEM_BAND
+    scarf = {i for face in mesh.polygons if face.material_index == figure.TRIM_SLOT
+             for i in face.vertices if mesh.vertices[i].co.z > band_top + 1e-6}
+    points = np.array([mesh.vertices[i].co[:] for i in sorted(scarf)])
+    bpy.data.meshes.remove(mesh)
+    heights, radii, depths = np.array(figure.profile()).T
+    radius, depth = np.interp(points[:, 2], heights, radii), np.interp(points[:, 2], heights, depths)
+    # Outward from the section along the point's own direction: the gap in metres.
+    share = np.hypot(points[:, 0] / (depth * radius), points[:, 1] / radius)
+    gap = np.hypot(points[:, 0], points[:, 1]) * (1.0 - 1.0 / share)
+    print(f"{len(points)} scarf vertices, {gap.min() * 100:.1f}-{gap.max() * 100:.1f} cm off the cloth")
+    assert len(points) > 50 and points[:, 2].min() < 0.8 and 0.005 < gap.min() and gap.max() < 0.07

@@ -1,0 +1,163 @@
+"""The stand-in walker's body and its cloth: one lathed surface from the robe's hem to the hood's
+peak (the traveller of seed 004), a head in the hood, a scarf wrapped at the neck whose tail hangs
+down the back, a band at the hem, and the three materials its body and limbs wear.
+
+Materials are ours (MATERIAL_KEY "cloak", "walker_trim", "walker_wraps"), found in the walker's and
+its limbs' slots, so Add Walker again keeps an artist's edits to them.
+"""
+
+import itertools
+
+import bmesh
+import bpy
+import numpy as np
+from mathutils import Matrix
+
+from . import ownership as own
+from . import walker_gait
+
+HEIGHT = 1.7  # metres: a person-sized stand-in
+# Linear base colours. A crimson cloak: the low sun's warm light turned the earlier red
+# (0.36, 0.03, 0.02) burnt orange on screen (the fourth review: hue 17 degrees).
+CLOAK = (0.26, 0.012, 0.022, 1.0)
+TRIM = (0.55, 0.3, 0.06, 1.0)  # the golden scarf and hem band of seed 004's traveller
+WRAPS = (0.035, 0.025, 0.02, 1.0)  # dark cloth wound round the legs and hands
+TRIM_KEY, WRAPS_KEY = "walker_trim", walker_gait.WRAPS
+# A robe from the shoulders to below the knees, flaring as the traveller's cloak does (a box-like
+# torso over bare legs read as a mannequin): radius at the hem, at the shoulders, the hem's height
+# over the soles, and its depth front to back against its width.
+ROBE = (0.3, 0.19, 0.5, 0.7)
+SHOULDERS = 1.42  # metres over the soles
+HEM_BAND = 0.07  # metres: the golden band's height over the hem
+# 4: a scarf and a hem band in gold, legs and hands wrapped dark; 3: the robe and a hood (2: the
+# robe under a bare head on a neck; 1: a torso over the hips)
+FIGURE_SHAPE_KEY, FIGURE_SHAPE = "sandscape_figure_shape", 4
+HEAD = 0.11  # radius; its top at HEIGHT
+HEAD_FORWARD = 0.035  # metres: the face fills the hood's opening
+# Above the robe's shoulders, as (height over the soles, radius, depth against width): the
+# shoulders slope into a hood rounding the head and ending in a peak that falls back, the
+# traveller's of seed 004 (square shoulders and a ball on a neck read as a mannequin).
+HOOD = ((1.46, 0.155, 0.8), (1.5, 0.1, 0.95), (1.56, 0.125, 1.0), (1.64, 0.132, 1.0), (1.71, 0.115, 1.0),
+        (1.77, 0.075, 1.0), (1.82, 0.02, 1.0))
+HOOD_FALL = 0.07  # metres the peak falls back
+# The scarf's wrap at the neck, as the hood's rings (1-2 cm outside the cloth under it), and its
+# tail down the back: from TAIL heights (top, end), widths (top, end), lifting off the flaring robe
+# by TAIL_LIFT (top, end), its end cut into two points.
+COLLAR = ((1.41, 0.2, 0.73), (1.46, 0.175, 0.8), (1.52, 0.128, 0.93))
+TAIL = (1.44, 0.74)
+TAIL_WIDTH = (0.13, 0.1)
+TAIL_LIFT = (0.03, 0.06)
+TAIL_SWAY = 0.04  # metres: the tail bends sideways as a breeze takes it
+ROBE_SEGMENTS = 24
+CLOAK_SLOT, TRIM_SLOT = 0, 1  # the body's material slots
+
+
+def profile():
+    """The body's rings from the hem up: (height over the soles, radius, depth against width)."""
+    hem_radius, shoulder_radius, hem, depth_share = ROBE
+    band = hem_radius + (shoulder_radius - hem_radius) * HEM_BAND / (SHOULDERS - hem)
+    return [(hem, hem_radius, depth_share), (hem + HEM_BAND, band, depth_share),
+            (SHOULDERS, shoulder_radius, depth_share), *HOOD]
+
+
+def _ring_points(height, radius, depth, turn):
+    fall_from, peak = HOOD[-3][0], HOOD[-1][0]  # above the head's top the hood falls back
+    fall = HOOD_FALL * max(0.0, (height - fall_from) / (peak - fall_from))
+    return np.stack([depth * radius * np.cos(turn) - fall, radius * np.sin(turn), np.full_like(turn, height)])
+
+
+def _lathe(bm, rings_at, material, close_bottom=False, close_top=False):
+    turn = np.linspace(0.0, 2 * np.pi, ROBE_SEGMENTS, endpoint=False)
+    rings = [[bm.verts.new(p) for p in _ring_points(*ring, turn).T] for ring in rings_at]
+    faces = [bm.faces.new(rings[0][::-1])] if close_bottom else []
+    for low, high in itertools.pairwise(rings):
+        for i in range(ROBE_SEGMENTS):
+            j = (i + 1) % ROBE_SEGMENTS
+            faces.append(bm.faces.new((low[i], low[j], high[j], high[i])))
+    if close_top:
+        faces.append(bm.faces.new(rings[-1]))
+    for face, index in zip(faces, material, strict=True):
+        face.material_index = index
+
+
+def _tail(bm):
+    """The scarf's tail: a strip of rows down the back (-X), three points across."""
+    heights, radii, depths = np.array(profile()).T
+    rows = []
+    for t in np.linspace(0.0, 1.0, 12):
+        height = TAIL[0] + (TAIL[1] - TAIL[0]) * t
+        radius = np.interp(height, heights, radii) + TAIL_LIFT[0] + (TAIL_LIFT[1] - TAIL_LIFT[0]) * t
+        depth = np.interp(height, heights, depths)
+        half = (TAIL_WIDTH[0] + (TAIL_WIDTH[1] - TAIL_WIDTH[0]) * t) / 2
+        middle = TAIL_SWAY * np.sin(np.pi * t)
+        turn = np.pi + (middle + np.array([-half, 0.0, half])) / radius
+        points = _ring_points(height, radius, depth, turn)
+        if t == 1.0:
+            points[2, 1] += 0.06  # the end's middle rises: two points
+        rows.append([bm.verts.new(p) for p in points.T])
+    for upper, lower in itertools.pairwise(rows):
+        for k in range(2):
+            bm.faces.new((upper[k], upper[k + 1], lower[k + 1], lower[k])).material_index = TRIM_SLOT
+
+
+def figure_mesh(scale):
+    """A low-poly figure's body standing on its origin facing +X: a robe broader across than deep
+    with a golden band at its hem, whose shoulders slope into a peaked hood; a head; a scarf at the
+    neck with its tail down the back (its limbs are walker_gait's, the legs swinging inside the
+    robe and the shins showing below it). `scale`: scene units per metre. Slots: cloak, trim."""
+    bm = bmesh.new()
+    rings = profile()
+    bands = [TRIM_SLOT] * ROBE_SEGMENTS + [CLOAK_SLOT] * (ROBE_SEGMENTS * (len(rings) - 2))
+    _lathe(bm, rings, [CLOAK_SLOT, *bands, CLOAK_SLOT], close_bottom=True, close_top=True)
+    _lathe(bm, COLLAR, [TRIM_SLOT] * (ROBE_SEGMENTS * (len(COLLAR) - 1)))
+    _tail(bm)
+    bmesh.ops.create_uvsphere(bm, u_segments=12, v_segments=8, radius=HEAD,
+                              matrix=Matrix.Translation((HEAD_FORWARD, 0.0, HEIGHT - HEAD)))
+    walker_gait.shade_smooth_but_edges(bm)
+    bmesh.ops.scale(bm, vec=(scale, scale, scale), verts=bm.verts)
+    mesh = bpy.data.meshes.new("Sandscape Walker")
+    bm.to_mesh(mesh)
+    bm.free()
+    return mesh
+
+
+# kind: (name, linear base colour, roughness). No sheen: it paled the cloak and rimmed nothing against
+# a low sun ahead (README, the fourth review).
+MATERIALS = {own.CLOAK: ("Sandscape Walker Cloak", CLOAK, 0.8),
+             TRIM_KEY: ("Sandscape Walker Trim", TRIM, 0.55),
+             WRAPS_KEY: ("Sandscape Walker Wraps", WRAPS, 0.9)}
+
+
+def _new_material(kind):
+    name, colour, roughness = MATERIALS[kind]
+    material = own.mark(bpy.data.materials.new(name), own.MATERIAL_KEY, kind)
+    material.diffuse_color = colour
+    nodes = material.node_tree.nodes if material.node_tree else ()
+    shader = next((n for n in nodes if n.bl_idname == "ShaderNodeBsdfPrincipled"), None)
+    if shader is not None:
+        shader.inputs["Base Color"].default_value = colour
+        shader.inputs["Roughness"].default_value = roughness
+    return material
+
+
+class Cloth(dict):
+    """{kind: material} for a figure: ours found in the walker's and its limbs' slots; a kind not
+    found is made when first asked for (none is made that nothing wears)."""
+
+    def __init__(self, walker):
+        super().__init__()
+        for obj in (walker, *walker.children_recursive):
+            for kind in MATERIALS:
+                if kind not in self and (found := own.slot_material(obj, kind)) is not None:
+                    self[kind] = found
+
+    def __missing__(self, kind):
+        self[kind] = material = _new_material(kind)
+        return material
+
+
+def dress(walker, cloth):
+    """Give the body's new mesh its slots: cloak, trim (`cloth`: a Cloth). Appended to a mesh without
+    any: clearing a mesh's slots clears its faces' material indices too."""
+    walker.data.materials.append(cloth[own.CLOAK])
+    walker.data.materials.append(cloth[TRIM_KEY])
