@@ -10,6 +10,7 @@ import math
 
 import bpy
 import numpy as np
+import pytest
 from mathutils import Vector
 
 from core import sun as sky_sun
@@ -51,3 +52,50 @@ def test_eevee_draws_the_sun_disc_as_bright_as_the_lamp(eevee_scene, sandscape):
     assert len(inside) >= 20
     assert np.allclose(inside.mean(0), expected, rtol=RADIANCE_TOLERANCE)
     assert outside.max() < 0.01 * expected.max()  # the sky beside it (about 0.2 %), no disc
+
+
+@pytest.mark.sweep
+@pytest.mark.parametrize("lens, samples, tolerance", [(35.0, 64, 0.1), (12.0, 256, 0.4)])
+def test_eevee_draws_a_disc_smaller_than_a_pixel_in_place(eevee_scene, sandscape, lens, samples, tolerance):
+    """The sky's own sun size (0.0095 rad) through a 35 mm and a 12 mm lens, 96x64: the disc 0.9
+    and 0.3 pixel across, off the pixel grid. EEVEE's jittered samples find it: the light over the
+    sky's level, summed round its brightest pixel, is the lamp's irradiance within 10 % for the
+    larger disc at 64 samples; the smaller one's stays 1.0-1.36 times it from 16 to 1024 samples
+    (EEVEE's film does not converge there: 40 %); its centroid lies within a quarter pixel of where
+    Blender projects the sun. (The demo's EEVEE sun had not read as a dot; a disc missed between
+    pixel centres was the guess this refutes from 16 samples on: at 1 and 4 it is missed.)"""
+    scene = eevee_scene
+    size = sandscape.addon.sun_lamp.SKY_SUN_SIZE
+    width, height = 96, 64
+    scene.render.resolution_x, scene.render.resolution_y = width, height
+    lamp = bpy.data.lights.new("Their Sun", "SUN")
+    lamp.energy, lamp.color, lamp.angle = 4.0, (1.0, 0.9, 0.7), size
+    sun = bpy.data.objects.new("Their Sun", lamp)
+    sun.rotation_euler = (math.radians(60.0), 0.0, math.radians(20.0))
+    scene.collection.objects.link(sun)
+    air = scene.sandscape_atmosphere
+    air.density, air.dust_density, air.use_haze, air.use_wind = 0.0, 0.0, False, False
+    camera = scenes.camera("PERSP", location=(0.0, 0.0, 2.0), lens=lens)
+    assert bpy.ops.sandscape.add_atmosphere() == {"FINISHED"}
+    bpy.context.view_layer.update()
+    toward = (sun.matrix_world.to_3x3() @ Vector((0.0, 0.0, 1.0))).normalized()
+    turn = toward.to_track_quat("-Z", "Y").to_euler()
+    turn.x, turn.z = turn.x + 0.021, turn.z + 0.013  # the sun off the frame's centre and its pixel's
+    camera.rotation_euler = turn
+    bpy.context.view_layer.update()
+    scene.view_settings.view_transform = "Standard"
+    scene.eevee.taa_render_samples = samples
+    pixels = readback.render(scene)[..., :3].astype(np.float64)
+    assert np.isfinite(pixels).all()
+    excess = np.clip(pixels - np.median(pixels, axis=(0, 1)), 0.0, None).sum(-1)
+    row, col = np.unravel_index(np.argmax(excess), excess.shape)
+    rows, cols = np.mgrid[row - 4:row + 5, col - 4:col + 5]
+    window = excess[rows, cols]
+    pixel_angle = camera.data.sensor_width / lens / width
+    energy = window.sum() * pixel_angle ** 2 / (np.array(lamp.color) * lamp.energy).sum()
+    centroid = np.array([(window * (rows + 0.5)).sum(), (window * (cols + 0.5)).sum()]) / window.sum()
+    columns, heights = scenes.project(camera, np.array([camera.location + toward * 100.0]), width, height)
+    miss = np.hypot(*(centroid - [heights[0], columns[0]]))
+    print(f"lens {lens:g}: disc {size / pixel_angle:.2f} px across, {energy:.3f} of the lamp's "
+          f"irradiance, centroid {miss:.2f} px from the sun's place")
+    assert energy == pytest.approx(1.0, abs=tolerance) and miss < 0.25
