@@ -324,3 +324,34 @@ def test_add_walker_gives_an_older_walkers_shins_feet(walk):
     again = {o["sandscape_limb"]: o for o in bpy.data.objects if o.get("sandscape_object") == "walker_limb"}
     assert again == limbs and "bare shin" not in bpy.data.meshes and len(bpy.data.meshes) == meshes
     assert max(v.co.x for v in shin.data.vertices) > 0.1
+
+
+def test_add_walker_dresses_an_older_walker_in_the_cloak_it_wore(walk):
+    """A walker saved before the scarf (figure and limb shape 3, everything in one cloak the artist
+    has recoloured): Add Walker again gives it the new body and limbs, keeps that cloak (its colour
+    too) and makes one trim and one wrap, nothing twice."""
+    walk.walker = None
+    assert bpy.ops.sandscape.add_walker() == {"FINISHED"}
+    walker = next(o for o in bpy.data.objects if o.get("sandscape_object") == "walker")
+    limbs = [o for o in bpy.data.objects if o.get("sandscape_object") == "walker_limb"]
+    cloak = walker.data.materials[0]
+    for obj, key in ((walker, "sandscape_figure_shape"), *((limb, "sandscape_limb_shape") for limb in limbs)):
+        old = bpy.data.meshes.new("older " + obj.name)
+        old.from_pydata([(0, 0, 0), (0, 0, -0.4), (0.01, 0, -0.4)], [], [(0, 1, 2)])
+        old.materials.append(cloak)
+        obj.data, obj[key] = old, 3
+    newer = ("walker_trim", "walker_wraps")
+    for material in [m for m in bpy.data.materials if m.get("sandscape_material") in newer]:
+        bpy.data.materials.remove(material)
+    cloak.diffuse_color = (0.1, 0.2, 0.6, 1.0)  # the artist's blue
+    assert bpy.ops.sandscape.add_walker() == {"FINISHED"}
+    kinds = [m.get("sandscape_material") for m in bpy.data.materials]
+    assert sorted(k for k in kinds if k in ("cloak", "walker_trim", "walker_wraps")) == [
+        "cloak", "walker_trim", "walker_wraps"]
+    trim, wraps = (next(m for m in bpy.data.materials if m.get("sandscape_material") == k) for k in newer)
+    assert list(walker.data.materials) == [cloak, trim]
+    assert tuple(cloak.diffuse_color) == pytest.approx((0.1, 0.2, 0.6, 1.0))
+    assert not [m for m in bpy.data.meshes if m.name.startswith("older ")]
+    for limb in limbs:
+        worn = [cloak, wraps] if limb["sandscape_limb"].endswith("arm") else [wraps]
+        assert list(limb.data.materials) == worn
