@@ -27,6 +27,7 @@ DUNES, DUNE_HORIZON = "dunes", "dune_horizon"
 SCENERY = (DUNES,)  # ours, yet the scene's ground: counted where the scene's geometry is
 # Kinds of materials, images, worlds
 SAND, DUST, CLOUD_MATERIAL, CLOAK = "sand", "dust", "clouds", "cloak"
+CLOAK_TRIM, WRAPS = "walker_trim", "walker_wraps"  # the walker's golden trim; legs' and hands' cloth
 GLINT_NOISE, PRINT_MAP = "glint_noise", "print_map"
 SKY = "sky"
 CLOUD_GRID = "cloud_grid"  # the cloud layer's own geometry-nodes tree

@@ -22,7 +22,6 @@ HEIGHT = 1.7  # metres: a person-sized stand-in
 CLOAK = (0.26, 0.012, 0.022, 1.0)
 TRIM = (0.55, 0.3, 0.06, 1.0)  # the golden scarf and hem band of seed 004's traveller
 WRAPS = (0.035, 0.025, 0.02, 1.0)  # dark cloth wound round the legs and hands
-TRIM_KEY, WRAPS_KEY = "walker_trim", walker_gait.WRAPS
 # A robe from the shoulders to below the knees, flaring as the traveller's cloak does (a box-like
 # torso over bare legs read as a mannequin): radius at the hem, at the shoulders, the hem's height
 # over the soles, and its depth front to back against its width.
@@ -84,7 +83,8 @@ def _tail(bm):
     """The scarf's tail: a strip of rows down the back (-X), three points across."""
     heights, radii, depths = np.array(profile()).T
     rows = []
-    for t in np.linspace(0.0, 1.0, 12):
+    steps = np.linspace(0.0, 1.0, 12)
+    for row, t in enumerate(steps):
         height = TAIL[0] + (TAIL[1] - TAIL[0]) * t
         radius = np.interp(height, heights, radii) + TAIL_LIFT[0] + (TAIL_LIFT[1] - TAIL_LIFT[0]) * t
         depth = np.interp(height, heights, depths)
@@ -92,7 +92,7 @@ def _tail(bm):
         middle = TAIL_SWAY * np.sin(np.pi * t)
         turn = np.pi + (middle + np.array([-half, 0.0, half])) / radius
         points = _ring_points(height, radius, depth, turn)
-        if t == 1.0:
+        if row == len(steps) - 1:
             points[2, 1] += 0.06  # the end's middle rises: two points
         rows.append([bm.verts.new(p) for p in points.T])
     for upper, lower in itertools.pairwise(rows):
@@ -124,8 +124,8 @@ def figure_mesh(scale):
 # kind: (name, linear base colour, roughness). No sheen: it paled the cloak and rimmed nothing against
 # a low sun ahead (README, the fourth review).
 MATERIALS = {own.CLOAK: ("Sandscape Walker Cloak", CLOAK, 0.8),
-             TRIM_KEY: ("Sandscape Walker Trim", TRIM, 0.55),
-             WRAPS_KEY: ("Sandscape Walker Wraps", WRAPS, 0.9)}
+             own.CLOAK_TRIM: ("Sandscape Walker Trim", TRIM, 0.55),
+             own.WRAPS: ("Sandscape Walker Wraps", WRAPS, 0.9)}
 
 
 def _new_material(kind):
@@ -160,4 +160,4 @@ def dress(walker, cloth):
     """Give the body's new mesh its slots: cloak, trim (`cloth`: a Cloth). Appended to a mesh without
     any: clearing a mesh's slots clears its faces' material indices too."""
     walker.data.materials.append(cloth[own.CLOAK])
-    walker.data.materials.append(cloth[TRIM_KEY])
+    walker.data.materials.append(cloth[own.CLOAK_TRIM])

@@ -39,7 +39,6 @@ HAND = 0.045  # radius: a wrapped hand at the sleeve's end
 # 4: legs and hands wrapped in dark cloth, slimmer legs; 3: sleeves widening to the wrist from a
 # rounded shoulder, caps shaded sharp; 2: shins with feet (limbs before that had none)
 SHAPE_KEY, SHAPE = "sandscape_limb_shape", 4
-WRAPS = "walker_wraps"  # the material kind legs and hands wear (walker_figure makes it)
 SHARP_ANGLE = 0.9  # radians: caps and rims keep their edges; the sides shade smooth
 
 
@@ -100,7 +99,7 @@ def ensure_limbs(walker, cloth, scale, stance):
         title = "Sandscape Walker " + name.replace("_", " ").title()
         if limb is None or limb.get(SHAPE_KEY) != SHAPE:  # missing, or an older walker's shape
             mesh = _limb_mesh(title, bottom, top, length, scale)
-            for kind in (own.CLOAK, WRAPS) if name.endswith("arm") else (WRAPS,):
+            for kind in (own.CLOAK, own.WRAPS) if name.endswith("arm") else (own.WRAPS,):
                 mesh.materials.append(cloth[kind])
         if limb is None:
             limb = bpy.data.objects.new(title, mesh)

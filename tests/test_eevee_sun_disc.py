@@ -21,22 +21,33 @@ ANGLE = 0.02  # radians: the artist's sun, about 18 pixels across here
 RADIANCE_TOLERANCE = 0.01  # relative, per channel, on the pixels well inside the disc (the sky adds 0.2 %)
 
 
-def test_eevee_draws_the_sun_disc_as_bright_as_the_lamp(eevee_scene, sandscape):
-    scene = eevee_scene
+def _aim_at_the_artists_sun(scene, lens, angle, offset=(0.0, 0.0)):
+    """The artist's lamp 30 degrees up, Add Atmosphere with no dust, a camera turned toward the sun
+    (turned further by `offset`, radians about X and Z). Returns the sun, the camera and the
+    direction toward the sun."""
     lamp = bpy.data.lights.new("Their Sun", "SUN")
-    lamp.energy, lamp.color, lamp.angle = 4.0, (1.0, 0.9, 0.7), ANGLE
+    lamp.energy, lamp.color, lamp.angle = 4.0, (1.0, 0.9, 0.7), angle
     sun = bpy.data.objects.new("Their Sun", lamp)
-    sun.rotation_euler = (math.radians(60.0), 0.0, math.radians(20.0))  # 30 degrees up
+    sun.rotation_euler = (math.radians(60.0), 0.0, math.radians(20.0))
     scene.collection.objects.link(sun)
     air = scene.sandscape_atmosphere
     air.density, air.dust_density, air.use_haze, air.use_wind = 0.0, 0.0, False, False
-    camera = scenes.camera("PERSP", location=(0.0, 0.0, 2.0), lens=LENS)
+    camera = scenes.camera("PERSP", location=(0.0, 0.0, 2.0), lens=lens)
     assert bpy.ops.sandscape.add_atmosphere() == {"FINISHED"}
-    assert sandscape.addon.atmosphere.scene_sun(scene) == sun
     bpy.context.view_layer.update()
     toward = (sun.matrix_world.to_3x3() @ Vector((0.0, 0.0, 1.0))).normalized()
-    camera.rotation_euler = toward.to_track_quat("-Z", "Y").to_euler()
+    turn = toward.to_track_quat("-Z", "Y").to_euler()
+    turn.x, turn.z = turn.x + offset[0], turn.z + offset[1]
+    camera.rotation_euler = turn
     bpy.context.view_layer.update()
+    return sun, camera, toward
+
+
+def test_eevee_draws_the_sun_disc_as_bright_as_the_lamp(eevee_scene, sandscape):
+    scene = eevee_scene
+    sun, camera, toward = _aim_at_the_artists_sun(scene, LENS, ANGLE)
+    lamp = sun.data
+    assert sandscape.addon.atmosphere.scene_sun(scene) == sun
     scene.eevee.taa_render_samples = 16
     pixels = readback.render(scene)[..., :3].astype(np.float64)
     assert np.isfinite(pixels).all()
@@ -68,21 +79,9 @@ def test_eevee_draws_a_disc_smaller_than_a_pixel_in_place(eevee_scene, sandscape
     size = sandscape.addon.sun_lamp.SKY_SUN_SIZE
     width, height = 96, 64
     scene.render.resolution_x, scene.render.resolution_y = width, height
-    lamp = bpy.data.lights.new("Their Sun", "SUN")
-    lamp.energy, lamp.color, lamp.angle = 4.0, (1.0, 0.9, 0.7), size
-    sun = bpy.data.objects.new("Their Sun", lamp)
-    sun.rotation_euler = (math.radians(60.0), 0.0, math.radians(20.0))
-    scene.collection.objects.link(sun)
-    air = scene.sandscape_atmosphere
-    air.density, air.dust_density, air.use_haze, air.use_wind = 0.0, 0.0, False, False
-    camera = scenes.camera("PERSP", location=(0.0, 0.0, 2.0), lens=lens)
-    assert bpy.ops.sandscape.add_atmosphere() == {"FINISHED"}
-    bpy.context.view_layer.update()
-    toward = (sun.matrix_world.to_3x3() @ Vector((0.0, 0.0, 1.0))).normalized()
-    turn = toward.to_track_quat("-Z", "Y").to_euler()
-    turn.x, turn.z = turn.x + 0.021, turn.z + 0.013  # the sun off the frame's centre and its pixel's
-    camera.rotation_euler = turn
-    bpy.context.view_layer.update()
+    # the sun off the frame's centre and its pixel's
+    sun, camera, toward = _aim_at_the_artists_sun(scene, lens, size, offset=(0.021, 0.013))
+    lamp = sun.data
     scene.view_settings.view_transform = "Standard"
     scene.eevee.taa_render_samples = samples
     pixels = readback.render(scene)[..., :3].astype(np.float64)
