@@ -31,11 +31,11 @@ SAND_COLOR = core_sand.SAND_COLOR
 LOOKS = {"PHYSICAL": physical_sand, "JOURNEY": journey_sand}
 GLINT_INPUTS = ("Threshold", "Glint Size", "Facing Power", "Color", "Strength", "Roughness", "Seed")
 RIPPLE_INPUTS = ("Wavelength", "Amplitude", "Steep Fraction", "Lee Fraction", "Meander", "Meander Scale",
-                 "Variation")
+                 "Variation", "Defects")
 # The sand operator's ripple settings and the Ripples inputs they set.
 RIPPLE_SETTINGS = {"ripple_wavelength": "Wavelength", "ripple_amplitude": "Amplitude",
                    "ripple_meander": "Meander", "ripple_meander_scale": "Meander Scale",
-                   "ripple_variation": "Variation"}
+                   "ripple_variation": "Variation", "ripple_defects": "Defects"}
 STRUCTURE_KEY = "sandscape_structure"  # look / glints / source / ripples of the tree built
 # Node names inside our material.
 PRINT_SPACE, PRINT_REGION = "Sandscape Print Space", "Sandscape Print Region"
@@ -122,7 +122,8 @@ def read_settings(material):
     wave = ripple_node(material)
     if wave is not None:
         for setting, name in RIPPLE_SETTINGS.items():
-            settings[setting] = wave.inputs[name].default_value
+            if name in wave.inputs:  # a group built by an older version lacks the newer inputs
+                settings[setting] = wave.inputs[name].default_value
         settings["ripple_displacement"] = own.node(material.node_tree, RIPPLE_DISPLACEMENT) is not None
     image = image_node(material)
     if image is not None and image.image is not None:

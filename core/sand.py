@@ -15,6 +15,8 @@ journey_eevee       <-> the EEVEE Shader's diffuse: the seed's contrast through 
 ocean_roughness     <-> the Ocean Specular part: a Blinn-Phong exponent as Beckmann roughness
 rim                 <-> the Rim part: (1 - N.V)^power x strength
 ripples             <-> "Sandscape Ripples": wind ripples' height and shading normal
+ripple_defects      <-> "Sandscape Ripple Defects": one lattice of dislocation pairs (a crest
+                        that begins and ends in Y-junctions) as a phase and its gradient
 """
 
 import numpy as np
@@ -213,13 +215,79 @@ def ripple_lattice(position, scale):
     return blend(value), blend(green), np.stack([dx, dy], axis=-1) / scale
 
 
+DEFECT_CELL = 11.0  # wavelengths: a lattice cell, one dislocation pair at most
+DEFECT_JITTER = 0.5  # wavelengths: how far a pair's centre strays from its cell's
+DEFECT_HALF = (1.5, 3.0)  # wavelengths: half the inserted crest's length, from .. to
+DEFECT_REACH = (3.5, 5.0)  # wavelengths: the pair's phase whole within the first, gone at the second
+DEFECT_CORE = 0.5  # wavelengths: the ripples flatten toward a core (no point where the normal spins)
+DEFECT_LAYERS = ((0.0, 2.0), (0.5, 3.0))  # (lattice offset in cells, hash layer): two lattices
+
+
+def ripple_defects(position, direction, wavelength, share, offset, layer):
+    """(phase, its gradient (..., 2), keep, its gradient) of one lattice of ripple dislocation pairs.
+
+    A lattice of DEFECT_CELL wavelengths, shifted by `offset` cells; a cell whose White Noise 3D
+    value h at (cell, layer) is under `share` holds a pair: two phase vortices of opposite sign
+    at c +- l t (t along the crests), c the cell's centre moved by the noise's green and blue,
+    l from h. Their phase, the angle from p - a to p - b, jumps by exactly 2 pi between them (a
+    crest inserted there, ending in a Y-junction at each core; sin does not see the jump) and
+    fades to nothing by DEFECT_REACH, inside the cell, so cells join without a seam. Keep, the
+    share of the ripples' height left, falls to 0 within DEFECT_CORE of each core.
+    """
+    p = np.asarray(position, F32)[..., :2].astype(np.float64)
+    size = DEFECT_CELL * wavelength
+    cell = np.floor((p / size).astype(F32) + F32(offset)).astype(np.float64)
+    key = np.stack([cell[..., 0], cell[..., 1], np.full(cell.shape[:-1], layer)], axis=-1)
+    h = white_noise_3d(key).astype(np.float64)
+    jitter = np.stack([white_noise_4d(key, 1.0), white_noise_4d(key, 2.0)], axis=-1).astype(np.float64)
+    centre = (cell + 0.5 - offset) * size + (jitter - 0.5) * (2.0 * DEFECT_JITTER * wavelength)
+    draw = _safe_divide(h, share)
+    sign = np.where(draw < 0.5, -1.0, 1.0) * (h < share)
+    half = wavelength * (DEFECT_HALF[0] + (DEFECT_HALF[1] - DEFECT_HALF[0]) * np.mod(2.0 * draw, 1.0))
+    along = np.array([-direction[1], direction[0]])
+    e = p - centre
+    u, v = e - half[..., None] * along, e + half[..., None] * along
+    angle = np.arctan2(u[..., 0] * v[..., 1] - u[..., 1] * v[..., 0], np.sum(u * v, axis=-1))
+    r = np.linalg.norm(e, axis=-1) / wavelength
+    low, high = DEFECT_REACH
+    t = np.clip((r - low) / (high - low), 0.0, 1.0)
+    whole = 1.0 - t * t * (3.0 - 2.0 * t)
+
+    def swirl(w):  # the gradient of the direction of w: perp(w) / |w|^2 (0 on the core, as Cycles)
+        square = np.sum(w * w, axis=-1, keepdims=True)
+        return np.stack([-w[..., 1], w[..., 0]], axis=-1) / np.where(square > 0.0, square, np.inf)
+
+    fading = -6.0 * t * (1.0 - t) / (high - low) / wavelength
+    gradient = whole[..., None] * (swirl(v) - swirl(u)) + (angle * fading)[..., None] * _unit_2d(e)
+    core_u, core_v = (_flattening(w, wavelength, sign != 0.0) for w in (u, v))
+    keep = core_u[0] * core_v[0]
+    keep_gradient = core_u[0][..., None] * core_v[1] + core_v[0][..., None] * core_u[1]
+    return sign * whole * angle, sign[..., None] * gradient, keep, keep_gradient
+
+
+def _unit_2d(w):
+    return w / np.maximum(np.linalg.norm(w, axis=-1, keepdims=True), 1e-12)
+
+
+def _flattening(w, wavelength, present):
+    """(share kept, its gradient) at w from a core: smoothstep from 0 at the core to 1 at
+    DEFECT_CORE wavelengths; 1 where the cell holds no pair."""
+    reach = DEFECT_CORE * wavelength
+    t = np.clip(np.linalg.norm(w, axis=-1) / reach, 0.0, 1.0)
+    kept = np.where(present, t * t * (3.0 - 2.0 * t), 1.0)
+    slope = np.where(present, 6.0 * t * (1.0 - t) / reach, 0.0)
+    return kept, slope[..., None] * _unit_2d(w)
+
+
 def ripples(position, normal, wind, wavelength, amplitude, steep_fraction=0.2, lee_fraction=0.3,
-            meander=0.0, meander_scale=1.0, variation=0.0, flatten=0.0):
+            meander=0.0, meander_scale=1.0, variation=0.0, flatten=0.0, defects=0.0):
     """(height, normal) of the ripples at world positions (..., 3) with world normals.
 
     Crests run across the wind and wander: phase = 2 pi ((p . wind) / wavelength + meander (2 m - 1)),
-    m the lattice noise (ripple_lattice); height = amplitude x weight x (1 - variation g) x
-    (1 - flatten) x sin(phase), flatten 1 where a foot trampled them.
+    m the lattice noise (ripple_lattice), plus the dislocation pairs of two lattices
+    (ripple_defects) in `defects` of their cells; height = amplitude x weight x (1 - variation g) x
+    (1 - flatten) x keep x sin(phase), flatten 1 where a foot trampled them, keep the flattening
+    toward the defects' cores.
     The normal tilts by the height's gradient through the phase; the slow change of amplitude and
     weight is left out (0.2 degrees of a 13 degree tilt at the defaults, tests/test_ripples.py).
     """
@@ -230,11 +298,19 @@ def ripples(position, normal, wind, wavelength, amplitude, steep_fraction=0.2, l
     m, g, dm = ripple_lattice(position, meander_scale)
     phase = k * (position[..., 0] * direction[0] + position[..., 1] * direction[1]) + \
         2 * np.pi * meander * (2.0 * m - 1.0)
+    phase_gradient = k * direction + 4 * np.pi * meander * dm
+    keep, keep_gradient = np.ones(phase.shape), np.zeros(phase.shape + (2,))
+    for offset, layer in DEFECT_LAYERS:
+        shift, bend, kept, kept_gradient = ripple_defects(position, direction, wavelength, defects, offset,
+                                                          layer)
+        phase, phase_gradient = phase + shift, phase_gradient + bend
+        keep_gradient = keep_gradient * kept[..., None] + keep[..., None] * kept_gradient
+        keep = keep * kept
     size = amplitude * ripple_weight(normal, wind, steep_fraction, lee_fraction) * (1.0 - variation * g) * \
         (1.0 - np.asarray(flatten, np.float64))
-    height = size * np.sin(phase)
-    phase_gradient = k * direction + 4 * np.pi * meander * dm
+    height = size * keep * np.sin(phase)
     gradient = np.zeros(position.shape)
-    gradient[..., :2] = (size * np.cos(phase))[..., None] * phase_gradient
+    gradient[..., :2] = (size * keep * np.cos(phase))[..., None] * phase_gradient + \
+        (size * np.sin(phase))[..., None] * keep_gradient
     along = np.sum(gradient * normal, axis=-1, keepdims=True)
     return height, _unit(normal - (gradient - along * normal))

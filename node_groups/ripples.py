@@ -3,8 +3,10 @@
 Crests run across the wind and wander: phase = 2 pi ((p . wind) / Wavelength + Meander (2 m - 1)),
 p the world position, wind the horizontal wind direction and m a smooth value noise on a lattice
 of Meander Scale (so crests bend, join and split as real ones do, rather than ruling the sand
-like corduroy); height = Amplitude x weight x (1 - Variation g) x (1 - Flatten) x sin(phase), g a
-second value of the same noise, Flatten 1 where a foot trampled them. The weight fades the
+like corduroy), plus the pairs of Y-junctions of two Ripple Defects lattices in Defects of their
+cells (a crest inserted between each pair); height = Amplitude x weight x (1 - Variation g) x
+(1 - Flatten) x keep x sin(phase), g a second value of the same noise, Flatten 1 where a foot
+trampled them, keep the defects' flattening toward their cores. The weight fades the
 ripples on steep slopes (Steep Fraction at the 35 degree angle of repose) and on slopes turned
 away from the wind (down to Lee Fraction), as seed 004 blends its ripple textures by slope and
 direction. The normal tilts by the height's
@@ -15,13 +17,15 @@ import math
 
 from ..core import sand
 from . import helper as h
+from . import ripple_defects
 
 NAME = "Sandscape Ripples"
-VERSION = 3
+VERSION = 4
 TREE_TYPE = "ShaderNodeTree"
 WAVELENGTH, AMPLITUDE = 0.12, 0.004  # metres: ripples of fine sand
 MEANDER_SCALE = 0.8  # metres: about 7 wavelengths between one bend of a crest and the next
 MEANDER, VARIATION = 0.8, 0.5  # 0.35 ruled the sand like corduroy in the demo (the fourth review)
+DEFECTS = 0.9  # share of the defect lattices' cells where a crest splits and ends
 DESCRIPTION = ("Wind ripples: crests across the wind, Wavelength apart, fading on steep and lee slopes; "
                "a height and the rippled normal")
 
@@ -46,6 +50,8 @@ def build(tree):
                 "back", MEANDER_SCALE, 1e-4, None, "DISTANCE")
     h.add_input(tree, "Variation", "NodeSocketFloat", "How much the ripples' height varies from place to "
                 "place: 0 keeps Amplitude everywhere", VARIATION, 0.0, 1.0, "FACTOR")
+    h.add_input(tree, "Defects", "NodeSocketFloat", "Share of places where a crest splits in two and "
+                "ends (Y-junctions): 0 gives unbroken crests", DEFECTS, 0.0, 1.0, "FACTOR")
     h.add_input(tree, "Flatten", "NodeSocketFloat", "Share of the ripples flattened here: a footprint's "
                 "Pressed (a foot tramples the ripples it lands on)", 0.0, 0.0, 1.0, "FACTOR")
     h.add_output(tree, "Height", "NodeSocketFloat", "Ripple height above the surface")
@@ -67,7 +73,10 @@ def build(tree):
     centred = h.math(tree, "MULTIPLY_ADD", lattice["m"], 2.0, label="2 m − 1")
     centred.inputs[2].default_value = -1.0
     shift = h.math(tree, "MULTIPLY", centred.outputs[0], meander_radians.outputs[0], label="Meander Shift")
-    phase = h.math(tree, "ADD", straight.outputs[0], shift.outputs[0], label="Phase")
+    meandered = h.math(tree, "ADD", straight.outputs[0], shift.outputs[0], label="Meandering Phase")
+    defects, defect_nodes = _defects(tree, position.outputs["Position"], direction, inputs)
+    broken = h.math(tree, "ADD", meandered.outputs[0], defects["phase"], label="+ Defects A")
+    phase = h.math(tree, "ADD", broken.outputs[0], defects["phase 2"], label="Phase")
     wave = h.math(tree, "SINE", phase.outputs[0], label="sin")
     wave_slope = h.math(tree, "COSINE", phase.outputs[0], label="cos")
 
@@ -100,17 +109,25 @@ def build(tree):
     unflattened = h.math(tree, "SUBTRACT", 1.0, inputs["Flatten"], label="1 − Flatten")
     scale = h.math(tree, "MULTIPLY", varied_size.outputs[0], unflattened.outputs[0], label="Size")
 
-    height = h.math(tree, "MULTIPLY", scale.outputs[0], wave.outputs[0], label="Height")
+    kept = h.math(tree, "MULTIPLY", scale.outputs[0], defects["keep"], label="Size × Keep")
+    height = h.math(tree, "MULTIPLY", kept.outputs[0], wave.outputs[0], label="Height")
     k = h.math(tree, "DIVIDE", 2 * math.pi, inputs["Wavelength"], label="2π / Wavelength")
     across = h.vector_math(tree, "SCALE", direction, label="k × Wind Direction")
     h.link(tree, k.outputs[0], across.inputs["Scale"])
     bend_rate = h.math(tree, "MULTIPLY", meander_radians.outputs[0], 2.0, label="2 × Meander × 2π")
     bend = h.vector_math(tree, "SCALE", lattice["gradient"], label="× ∇m")
     h.link(tree, bend_rate.outputs[0], bend.inputs["Scale"])
-    phase_gradient = h.vector_math(tree, "ADD", across.outputs[0], bend.outputs[0], label="∇Phase")
-    rate = h.math(tree, "MULTIPLY", scale.outputs[0], wave_slope.outputs[0], label="Size × cos")
-    gradient = h.vector_math(tree, "SCALE", phase_gradient.outputs[0], label="Gradient")
-    h.link(tree, rate.outputs[0], gradient.inputs["Scale"])
+    meander_gradient = h.vector_math(tree, "ADD", across.outputs[0], bend.outputs[0],
+                                     label="∇Meandering Phase")
+    phase_gradient = h.vector_math(tree, "ADD", meander_gradient.outputs[0], defects["phase gradient"],
+                                   label="∇Phase")
+    rate = h.math(tree, "MULTIPLY", kept.outputs[0], wave_slope.outputs[0], label="Size × Keep × cos")
+    through_phase = h.vector_math(tree, "SCALE", phase_gradient.outputs[0], label="Through the Phase")
+    h.link(tree, rate.outputs[0], through_phase.inputs["Scale"])
+    size_sine = h.math(tree, "MULTIPLY", scale.outputs[0], wave.outputs[0], label="Size × sin")
+    through_keep = h.vector_math(tree, "SCALE", defects["keep gradient"], label="Through Keep")
+    h.link(tree, size_sine.outputs[0], through_keep.inputs["Scale"])
+    gradient = h.vector_math(tree, "ADD", through_phase.outputs[0], through_keep.outputs[0], label="Gradient")
     normal_part = h.vector_math(tree, "DOT_PRODUCT", gradient.outputs[0], normal, label="Along the Normal")
     back = h.vector_math(tree, "SCALE", normal, label="× Normal")
     h.link(tree, normal_part.outputs["Value"], back.inputs["Scale"])
@@ -123,13 +140,43 @@ def build(tree):
     h.frame(tree, "Wind Direction", direction_nodes)
     h.frame(tree, "Lattice Noise (m, g)", lattice_nodes)
     h.frame(tree, "Crests across the Wind, Meandering", (position, along, cycles, straight, meander_radians,
-                                                          centred, shift, phase, wave, wave_slope))
+                                                          centred, shift, meandered, broken, phase, wave,
+                                                          wave_slope))
+    h.frame(tree, "Crests that Split and End", defect_nodes)
     h.frame(tree, "Fading on Steep and Lee Slopes", (split, upright, slope, steepness, steep_loss, steep,
                                                      downwind, leeness, lee_loss, lee, weight, weighted,
                                                      varied, keep, varied_size, unflattened, scale))
-    h.frame(tree, "Height and Normal", (height, k, across, bend_rate, bend, phase_gradient, rate, gradient,
-                                        normal_part, back, tangential, tilted, rippled))
+    h.frame(tree, "Height and Normal", (kept, height, k, across, bend_rate, bend, meander_gradient,
+                                        phase_gradient, rate, through_phase, size_sine, through_keep,
+                                        gradient, normal_part, back, tangential, tilted, rippled))
     h.arrange(tree)
+
+
+def _defects(tree, position, direction, inputs):
+    """Both Ripple Defects lattices summed: phase, phase gradient, keep and its gradient as
+    sockets in a dict, and the nodes made."""
+    lattices = []
+    for offset, layer in sand.DEFECT_LAYERS:
+        node = h.add_node(tree, "ShaderNodeGroup", node_tree=h.ensure_group(ripple_defects),
+                          label=f"Ripple Defects {len(lattices) + 1}",
+                          inputs={"Offset": offset, "Layer": layer})
+        h.link(tree, position, node.inputs["Position"])
+        h.link(tree, direction, node.inputs["Direction"])
+        h.link(tree, inputs["Wavelength"], node.inputs["Wavelength"])
+        h.link(tree, inputs["Defects"], node.inputs["Share"])
+        lattices.append(node)
+    first, second = (node.outputs for node in lattices)
+    keep = h.math(tree, "MULTIPLY", first["Keep"], second["Keep"], label="Keep")
+    part_first = h.vector_math(tree, "SCALE", first["Keep Gradient"], label="∇Keep 1 × Keep 2")
+    h.link(tree, second["Keep"], part_first.inputs["Scale"])
+    part_second = h.vector_math(tree, "SCALE", second["Keep Gradient"], label="∇Keep 2 × Keep 1")
+    h.link(tree, first["Keep"], part_second.inputs["Scale"])
+    keep_gradient = h.vector_math(tree, "ADD", part_first.outputs[0], part_second.outputs[0], label="∇Keep")
+    phase_gradient = h.vector_math(tree, "ADD", first["Phase Gradient"], second["Phase Gradient"],
+                                   label="∇Defect Phase")
+    return ({"phase": first["Phase"], "phase 2": second["Phase"], "phase gradient": phase_gradient.outputs[0],
+             "keep": keep.outputs[0], "keep gradient": keep_gradient.outputs[0]},
+            (*lattices, keep, part_first, part_second, keep_gradient, phase_gradient))
 
 
 def _lattice_noise(tree, position, lattice_scale):

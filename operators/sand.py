@@ -36,7 +36,8 @@ class SANDSCAPE_OT_add_sand_material(SandscapeOperator, bpy.types.Operator):
               "color": (0.0, 1e4), "strength": (0.0, 1e7), "roughness": (0.0, 1.0), "seed": (0, 2**24),
               "image_resolution": (1, 16384), "ripple_wavelength": (1e-4, 1e3),
               "ripple_amplitude": (0.0, 10.0), "ripple_meander": (0.0, 4.0),
-              "ripple_meander_scale": (1e-4, 1e4), "ripple_variation": (0.0, 1.0)}
+              "ripple_meander_scale": (1e-4, 1e4), "ripple_variation": (0.0, 1.0),
+              "ripple_defects": (0.0, 1.0)}
 
     look: EnumProperty(
         name="Look", default="PHYSICAL", options=SKIP,
@@ -92,6 +93,11 @@ class SANDSCAPE_OT_add_sand_material(SandscapeOperator, bpy.types.Operator):
         subtype="FACTOR", options=SKIP,
         description="How much the ripples' height varies from place to place: 0 keeps the amplitude "
         "everywhere")
+    ripple_defects: FloatProperty(
+        name="Ripple Defects", default=ripples.DEFECTS, soft_min=0.0, soft_max=1.0,
+        subtype="FACTOR", options=SKIP,
+        description="Share of places where a crest splits in two and ends (Y-junctions): 0 gives "
+        "unbroken crests")
     ripple_displacement: BoolProperty(
         name="Ripple Displacement", default=False, options=SKIP,
         description="Also displace by the ripples (true geometry where the footprint patch dices finely); "

@@ -18,9 +18,9 @@ def test_rerun_updates_instead_of_duplicating(sandscape):
     bpy.ops.sandscape.add_sand_material(threshold=0.5, roughness=0.2)
     assert len(ours(bpy.data.materials, "sandscape_material")) == 1
     assert len(plane.material_slots) == 1
-    # physical sand + its sand normal, lit glints + their cells, splat and facet, ripples, the
-    # EEVEE balance
-    assert len(ours(bpy.data.node_groups, "sandscape_group")) == 8
+    # physical sand + its sand normal, lit glints + their cells, splat and facet, ripples + their
+    # defects, the EEVEE balance
+    assert len(ours(bpy.data.node_groups, "sandscape_group")) == 9
     node = sandscape.addon.sand.glint_node(plane.active_material)
     assert node.inputs["Threshold"].default_value == pytest.approx(0.5)
     assert node.inputs["Roughness"].default_value == pytest.approx(0.2)
