@@ -22,27 +22,29 @@ HEIGHT = 1.7  # metres: a person-sized stand-in
 CLOAK = (0.26, 0.012, 0.022, 1.0)
 TRIM = (0.55, 0.3, 0.06, 1.0)  # the golden scarf and hem band of seed 004's traveller
 WRAPS = (0.035, 0.025, 0.02, 1.0)  # dark cloth wound round the legs and hands
-# A robe from the shoulders to below the knees, flaring as the traveller's cloak does (a box-like
-# torso over bare legs read as a mannequin): radius at the hem, at the shoulders, the hem's height
-# over the soles, and its depth front to back against its width.
-ROBE = (0.3, 0.19, 0.5, 0.7)
+# A robe from the shoulders to the shins, flaring as the traveller's cloak does (a box-like torso
+# over bare legs read as a mannequin; a hem at the knees, as a coat over boots): radius at the hem,
+# at the shoulders, the hem's height over the soles, and its depth front to back against its width.
+ROBE = (0.32, 0.19, 0.36, 0.78)
 SHOULDERS = 1.42  # metres over the soles
 HEM_BAND = 0.07  # metres: the golden band's height over the hem
-# 4: a scarf and a hem band in gold, legs and hands wrapped dark; 3: the robe and a hood (2: the
-# robe under a bare head on a neck; 1: a torso over the hips)
-FIGURE_SHAPE_KEY, FIGURE_SHAPE = "sandscape_figure_shape", 4
+# 5: the robe down to the shins, the hood's peak tall and pointed; 4: a scarf and a hem band in
+# gold, legs and hands wrapped dark; 3: the robe and a hood (2: the robe under a bare head on a
+# neck; 1: a torso over the hips)
+FIGURE_SHAPE_KEY, FIGURE_SHAPE = "sandscape_figure_shape", 5
 HEAD = 0.11  # radius; its top at HEIGHT
 HEAD_FORWARD = 0.035  # metres: the face fills the hood's opening
 # Above the robe's shoulders, as (height over the soles, radius, depth against width): the
-# shoulders slope into a hood rounding the head and ending in a peak that falls back, the
-# traveller's of seed 004 (square shoulders and a ball on a neck read as a mannequin).
-HOOD = ((1.46, 0.155, 0.8), (1.5, 0.1, 0.95), (1.56, 0.125, 1.0), (1.64, 0.132, 1.0), (1.71, 0.115, 1.0),
-        (1.77, 0.075, 1.0), (1.82, 0.02, 1.0))
-HOOD_FALL = 0.07  # metres the peak falls back
+# shoulders slope into a hood rounding the head and ending in a tall peak that falls back, the
+# traveller's of seed 004 (square shoulders and a ball on a neck read as a mannequin; a short
+# rounded peak, as a child's duffel hood).
+HOOD = ((1.46, 0.155, 0.8), (1.5, 0.1, 0.95), (1.56, 0.125, 1.0), (1.64, 0.132, 1.0), (1.71, 0.113, 1.0),
+        (1.76, 0.082, 1.0), (1.81, 0.048, 1.0), (1.87, 0.012, 1.0))
+HOOD_FALL = 0.12  # metres the peak falls back
 # The scarf's wrap at the neck, as the hood's rings (1-2 cm outside the cloth under it), and its
 # tail down the back: from TAIL heights (top, end), widths (top, end), lifting off the flaring robe
 # by TAIL_LIFT (top, end), its end cut into two points.
-COLLAR = ((1.41, 0.2, 0.73), (1.46, 0.175, 0.8), (1.52, 0.128, 0.93))
+COLLAR = ((1.41, 0.205, 0.8), (1.46, 0.175, 0.8), (1.52, 0.128, 0.93))
 TAIL = (1.44, 0.74)
 TAIL_WIDTH = (0.13, 0.1)
 TAIL_LIFT = (0.03, 0.06)

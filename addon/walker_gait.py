@@ -22,7 +22,7 @@ THIGH = SHIN = 0.44  # a leg a hair longer than the hips are high: the planted f
 LEG_LENGTH = THIGH + SHIN
 STANCE_LIMITS = (0.06, 0.16)  # metres either side of the path a leg hangs (from the prints' stance)
 SHOULDER = 0.22  # metres from the middle
-ARM_SPLAY = np.radians(12.0)  # arms hang out from the body, clear of the walker's flaring robe
+ARM_SPLAY = np.radians(14.0)  # arms hang out from the body, clear of the walker's flaring robe
 # Tapered cylinders hanging from a pivot: name: (radius at the bottom, at the top, length, side,
 # the pivot's height over the soles, or its drop below the end of the limb it hangs from), metres.
 # A thigh's distance from the middle follows the stance.
@@ -30,15 +30,16 @@ LIMBS = {"left_thigh": (0.06, 0.08, THIGH, paths.LEFT, HIPS),
          "right_thigh": (0.06, 0.08, THIGH, paths.RIGHT, HIPS),
          "left_shin": (0.045, 0.06, SHIN, paths.LEFT, THIGH),
          "right_shin": (0.045, 0.06, SHIN, paths.RIGHT, THIGH),
-         "left_arm": (0.055, 0.05, 0.6, paths.LEFT, 1.38), "right_arm": (0.055, 0.05, 0.6, paths.RIGHT, 1.38)}
+         "left_arm": (0.07, 0.05, 0.6, paths.LEFT, 1.38), "right_arm": (0.07, 0.05, 0.6, paths.RIGHT, 1.38)}
 HUNG_FROM = {"left_shin": "left_thigh", "right_shin": "right_thigh"}
 # A shin ends in a foot: a box (heel, toe: metres behind and ahead of the ankle; width; height)
 # centred on the ankle as the print is, so the foot fills the print it stands in.
 FOOT = (0.12, 0.14, 0.09, 0.07)
-HAND = 0.045  # radius: a wrapped hand at the sleeve's end
-# 4: legs and hands wrapped in dark cloth, slimmer legs; 3: sleeves widening to the wrist from a
-# rounded shoulder, caps shaded sharp; 2: shins with feet (limbs before that had none)
-SHAPE_KEY, SHAPE = "sandscape_limb_shape", 4
+HAND = 0.045  # radius: a wrapped hand, its centre at the sleeve's end (half of it in the sleeve)
+# 5: bell sleeves half over the hands; 4: legs and hands wrapped in dark cloth, slimmer legs; 3:
+# sleeves widening to the wrist from a rounded shoulder, caps shaded sharp; 2: shins with feet
+# (limbs before that had none)
+SHAPE_KEY, SHAPE = "sandscape_limb_shape", 5
 SHARP_ANGLE = 0.9  # radians: caps and rims keep their edges; the sides shade smooth
 
 
@@ -72,7 +73,7 @@ def _limb_mesh(name, bottom, top, length, scale):
     if name.endswith("Arm"):  # a rounded shoulder, not a cylinder's flat top; a hand in the wraps
         bmesh.ops.create_uvsphere(bm, u_segments=10, v_segments=6, radius=top * scale)
         hand = bmesh.ops.create_uvsphere(bm, u_segments=8, v_segments=6, radius=HAND * scale,
-                                         matrix=Matrix.Translation((0.0, 0.0, -(length + HAND / 2) * scale)))
+                                         matrix=Matrix.Translation((0.0, 0.0, -length * scale)))
         for face in {f for v in hand["verts"] for f in v.link_faces}:
             face.material_index = 1
     if name.endswith("Shin"):
