@@ -13,7 +13,7 @@ from ..core import sand as twin
 from . import helper as h
 
 NAME = "Sandscape Ripple Defects"
-VERSION = 1
+VERSION = 2  # 2: 8-wavelength cells, shorter inserted crests (1: 11)
 TREE_TYPE = "ShaderNodeTree"
 DESCRIPTION = ("Ripple crests that split and end: one lattice of dislocation pairs as a phase to add "
                "to the ripples' and a share of their height kept")
