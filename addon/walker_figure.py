@@ -1,6 +1,7 @@
-"""The stand-in walker's body and its cloth: one lathed surface from the robe's hem to the hood's
-peak (the traveller of seed 004), a head in the hood, a scarf wrapped at the neck whose tail hangs
-down the back, a band at the hem, and the three materials its body and limbs wear.
+"""The stand-in walker's body and its cloth: one lathed surface from the poncho's hem to the hood's
+peak (the traveller of seed 004, its arms under the cloth), a head in the hood, a scarf wrapped at
+the neck whose tail hangs down the back, a band at the hem, and the three materials its body and
+legs wear.
 
 Materials are ours (MATERIAL_KEY "cloak", "walker_trim", "walker_wraps"), found in the walker's and
 its limbs' slots, so Add Walker again keeps an artist's edits to them.
@@ -22,54 +23,74 @@ HEIGHT = 1.7  # metres: a person-sized stand-in
 CLOAK = (0.26, 0.012, 0.022, 1.0)
 TRIM = (0.55, 0.3, 0.06, 1.0)  # the golden scarf and hem band of seed 004's traveller
 WRAPS = (0.035, 0.025, 0.02, 1.0)  # dark cloth wound round the legs and hands
-# A robe from the shoulders to the shins, flaring as the traveller's cloak does (a box-like torso
-# over bare legs read as a mannequin; a hem at the knees, as a coat over boots): radius at the hem,
-# at the shoulders, the hem's height over the soles, and its depth front to back against its width.
-ROBE = (0.32, 0.19, 0.36, 0.78)
-SHOULDERS = 1.42  # metres over the soles
+# A cloak from the neck to the shins over the arms, as the traveller's poncho of seed 004 (the sixth
+# review: tube arms with ball hands out of bell sleeves, square shoulders and a trapezoid robe read
+# as a garden gnome). Rings from the hem up, (height over the soles, radius, depth against width):
+# the shoulders slope from the hood down to their points, the cloth falls from there, flaring.
+ROBE = ((0.36, 0.37, 0.8), (0.8, 0.32, 0.77), (1.12, 0.275, 0.72), (1.29, 0.248, 0.68),
+        (1.37, 0.226, 0.68), (1.42, 0.19, 0.72))
+HEM, SHOULDERS = ROBE[0][0], 1.37  # metres over the soles: the hem, the shoulders' points
 HEM_BAND = 0.07  # metres: the golden band's height over the hem
-# 5: the robe down to the shins, the hood's peak tall and pointed; 4: a scarf and a hem band in
-# gold, legs and hands wrapped dark; 3: the robe and a hood (2: the robe under a bare head on a
-# neck; 1: a torso over the hips)
-FIGURE_SHAPE_KEY, FIGURE_SHAPE = "sandscape_figure_shape", 5
+# The cloth's folds: FOLDS round the robe, their depth a share of the radius at the hem, fading to
+# nothing at the shoulders (a smooth cone with a straight hem read as stiff board).
+FOLDS, FOLD_DEPTH = 8, 0.07
+HEM_WAVE = 0.02  # metres the hem rises where a fold goes in
+# 6: a poncho over the arms with sloping shoulders and folds, the hood one smooth taper; 5: the robe
+# down to the shins, the hood's peak tall and pointed; 4: a scarf and a hem band in gold, legs and
+# hands wrapped dark; 3: the robe and a hood (2: the robe under a bare head on a neck; 1: a torso
+# over the hips)
+FIGURE_SHAPE_KEY, FIGURE_SHAPE = "sandscape_figure_shape", 6
 HEAD = 0.11  # radius; its top at HEIGHT
 HEAD_FORWARD = 0.035  # metres: the face fills the hood's opening
-# Above the robe's shoulders, as (height over the soles, radius, depth against width): the
-# shoulders slope into a hood rounding the head and ending in a tall peak that falls back, the
-# traveller's of seed 004 (square shoulders and a ball on a neck read as a mannequin; a short
-# rounded peak, as a child's duffel hood).
-HOOD = ((1.46, 0.155, 0.8), (1.5, 0.1, 0.95), (1.56, 0.125, 1.0), (1.64, 0.132, 1.0), (1.71, 0.113, 1.0),
-        (1.76, 0.082, 1.0), (1.81, 0.048, 1.0), (1.87, 0.012, 1.0))
+# Above the robe, as its rings: a hood narrowing in one curve from the shoulders over the head to
+# a tall peak that falls back, the traveller's of seed 004 (a neck narrowing under a rounded crown
+# read as a cone on an egg; a short rounded peak, as a child's duffel hood).
+HOOD = ((1.47, 0.145, 0.84), (1.53, 0.137, 0.94), (1.59, 0.134, 1.0), (1.65, 0.128, 1.0),
+        (1.71, 0.112, 1.0), (1.77, 0.085, 1.0), (1.82, 0.052, 1.0), (1.87, 0.012, 1.0))
 HOOD_FALL = 0.12  # metres the peak falls back
-# The scarf's wrap at the neck, as the hood's rings (1-2 cm outside the cloth under it), and its
+# The scarf's wrap at the neck, as (height over the soles, metres off the cloth under it), and its
 # tail down the back: from TAIL heights (top, end), widths (top, end), lifting off the flaring robe
 # by TAIL_LIFT (top, end), its end cut into two points.
-COLLAR = ((1.41, 0.205, 0.8), (1.46, 0.175, 0.8), (1.52, 0.128, 0.93))
+COLLAR = ((1.39, 0.025), (1.45, 0.02), (1.51, 0.015))
 TAIL = (1.44, 0.74)
 TAIL_WIDTH = (0.13, 0.1)
 TAIL_LIFT = (0.03, 0.06)
 TAIL_SWAY = 0.04  # metres: the tail bends sideways as a breeze takes it
-ROBE_SEGMENTS = 24
+ROBE_SEGMENTS = 32
 CLOAK_SLOT, TRIM_SLOT = 0, 1  # the body's material slots
 
 
 def profile():
     """The body's rings from the hem up: (height over the soles, radius, depth against width)."""
-    hem_radius, shoulder_radius, hem, depth_share = ROBE
-    band = hem_radius + (shoulder_radius - hem_radius) * HEM_BAND / (SHOULDERS - hem)
-    return [(hem, hem_radius, depth_share), (hem + HEM_BAND, band, depth_share),
-            (SHOULDERS, shoulder_radius, depth_share), *HOOD]
+    (hem, hem_radius, depth_share), (above, above_radius, _) = ROBE[:2]
+    band = hem_radius + (above_radius - hem_radius) * HEM_BAND / (above - hem)
+    return [ROBE[0], (hem + HEM_BAND, band, depth_share), *ROBE[1:], *HOOD]
 
 
-def _ring_points(height, radius, depth, turn):
+def section(heights):
+    """The cloth's elliptic section at `heights` (metres over the soles), its folds aside: (radius,
+    depth against width)."""
+    at, radii, depths = np.array(profile()).T
+    return np.interp(heights, at, radii), np.interp(heights, at, depths)
+
+
+def fold_depth(heights):
+    """How far in (a share of the radius) the folds reach at `heights`: deepest at the hem."""
+    return FOLD_DEPTH * np.clip((SHOULDERS - np.asarray(heights)) / (SHOULDERS - HEM), 0.0, 1.0) ** 1.5
+
+
+def _ring_points(height, radius, depth, turn, folds=False):
     fall_from, peak = HOOD[-3][0], HOOD[-1][0]  # above the head's top the hood falls back
     fall = HOOD_FALL * max(0.0, (height - fall_from) / (peak - fall_from))
-    return np.stack([depth * radius * np.cos(turn) - fall, radius * np.sin(turn), np.full_like(turn, height)])
+    trough = (1.0 - np.cos(FOLDS * turn)) / 2 if folds else np.zeros_like(turn)  # crests at the back
+    radius = radius * (1.0 - fold_depth(height) * trough)
+    lift = HEM_WAVE * trough if height <= HEM + HEM_BAND + 1e-9 else 0.0 * trough  # the hem rises in a fold
+    return np.stack([depth * radius * np.cos(turn) - fall, radius * np.sin(turn), height + lift])
 
 
-def _lathe(bm, rings_at, material, close_bottom=False, close_top=False):
+def _lathe(bm, rings_at, material, close_bottom=False, close_top=False, folds=False):
     turn = np.linspace(0.0, 2 * np.pi, ROBE_SEGMENTS, endpoint=False)
-    rings = [[bm.verts.new(p) for p in _ring_points(*ring, turn).T] for ring in rings_at]
+    rings = [[bm.verts.new(p) for p in _ring_points(*ring, turn, folds).T] for ring in rings_at]
     faces = [bm.faces.new(rings[0][::-1])] if close_bottom else []
     for low, high in itertools.pairwise(rings):
         for i in range(ROBE_SEGMENTS):
@@ -83,13 +104,12 @@ def _lathe(bm, rings_at, material, close_bottom=False, close_top=False):
 
 def _tail(bm):
     """The scarf's tail: a strip of rows down the back (-X), three points across."""
-    heights, radii, depths = np.array(profile()).T
     rows = []
     steps = np.linspace(0.0, 1.0, 12)
     for row, t in enumerate(steps):
         height = TAIL[0] + (TAIL[1] - TAIL[0]) * t
-        radius = np.interp(height, heights, radii) + TAIL_LIFT[0] + (TAIL_LIFT[1] - TAIL_LIFT[0]) * t
-        depth = np.interp(height, heights, depths)
+        radius, depth = section(height)
+        radius += TAIL_LIFT[0] + (TAIL_LIFT[1] - TAIL_LIFT[0]) * t
         half = (TAIL_WIDTH[0] + (TAIL_WIDTH[1] - TAIL_WIDTH[0]) * t) / 2
         middle = TAIL_SWAY * np.sin(np.pi * t)
         turn = np.pi + (middle + np.array([-half, 0.0, half])) / radius
@@ -103,15 +123,19 @@ def _tail(bm):
 
 
 def figure_mesh(scale):
-    """A low-poly figure's body standing on its origin facing +X: a robe broader across than deep
-    with a golden band at its hem, whose shoulders slope into a peaked hood; a head; a scarf at the
-    neck with its tail down the back (its limbs are walker_gait's, the legs swinging inside the
-    robe and the shins showing below it). `scale`: scene units per metre. Slots: cloak, trim."""
+    """A low-poly figure's body standing on its origin facing +X: a folded poncho over the arms,
+    broader across than deep, with a golden band at its hem, whose shoulders slope into a peaked
+    hood; a head; a scarf at the neck with its tail down the back (its legs are walker_gait's,
+    swinging inside the robe, the shins showing below it). `scale`: scene units per metre. Slots:
+    cloak, trim."""
     bm = bmesh.new()
     rings = profile()
     bands = [TRIM_SLOT] * ROBE_SEGMENTS + [CLOAK_SLOT] * (ROBE_SEGMENTS * (len(rings) - 2))
-    _lathe(bm, rings, [CLOAK_SLOT, *bands, CLOAK_SLOT], close_bottom=True, close_top=True)
-    _lathe(bm, COLLAR, [TRIM_SLOT] * (ROBE_SEGMENTS * (len(COLLAR) - 1)))
+    _lathe(bm, rings, [CLOAK_SLOT, *bands, CLOAK_SLOT], close_bottom=True, close_top=True, folds=True)
+    heights, lifts = np.array(COLLAR).T
+    radii, depths = section(heights)
+    collar = zip(heights, radii + lifts, depths, strict=True)
+    _lathe(bm, collar, [TRIM_SLOT] * (ROBE_SEGMENTS * (len(COLLAR) - 1)))
     _tail(bm)
     bmesh.ops.create_uvsphere(bm, u_segments=12, v_segments=8, radius=HEAD,
                               matrix=Matrix.Translation((HEAD_FORWARD, 0.0, HEIGHT - HEAD)))

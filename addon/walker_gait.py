@@ -1,7 +1,7 @@
-"""The stand-in walker's limbs and their stride: child objects (thighs from the hips, shins from
-the knees, arms from the shoulders) whose swing is keyed on every frame from the walker's own
-motion, phased by core.gait to the prints the path plans, so a foot is under its hip where its
-print lies.
+"""The stand-in walker's legs and their stride: child objects (thighs from the hips, shins from
+the knees; the arms are under walker_figure's poncho) whose swing is keyed on every frame from the
+walker's own motion, phased by core.gait to the prints the path plans, so a foot is under its hip
+where its print lies.
 
 Keys, not drivers: a file opened with scripts off walks the same. Limbs are ours (OBJECT_KEY
 "walker_limb", LIMB_KEY the limb's name), found among the walker's children.
@@ -21,25 +21,22 @@ HIPS = 0.86  # metres above the soles
 THIGH = SHIN = 0.44  # a leg a hair longer than the hips are high: the planted foot sinks into the sand
 LEG_LENGTH = THIGH + SHIN
 STANCE_LIMITS = (0.06, 0.16)  # metres either side of the path a leg hangs (from the prints' stance)
-SHOULDER = 0.22  # metres from the middle
-ARM_SPLAY = np.radians(14.0)  # arms hang out from the body, clear of the walker's flaring robe
 # Tapered cylinders hanging from a pivot: name: (radius at the bottom, at the top, length, side,
 # the pivot's height over the soles, or its drop below the end of the limb it hangs from), metres.
 # A thigh's distance from the middle follows the stance.
-LIMBS = {"left_thigh": (0.06, 0.08, THIGH, paths.LEFT, HIPS),
-         "right_thigh": (0.06, 0.08, THIGH, paths.RIGHT, HIPS),
-         "left_shin": (0.045, 0.06, SHIN, paths.LEFT, THIGH),
-         "right_shin": (0.045, 0.06, SHIN, paths.RIGHT, THIGH),
-         "left_arm": (0.07, 0.05, 0.6, paths.LEFT, 1.38), "right_arm": (0.07, 0.05, 0.6, paths.RIGHT, 1.38)}
+LIMBS = {"left_thigh": (0.05, 0.065, THIGH, paths.LEFT, HIPS),
+         "right_thigh": (0.05, 0.065, THIGH, paths.RIGHT, HIPS),
+         "left_shin": (0.032, 0.045, SHIN, paths.LEFT, THIGH),
+         "right_shin": (0.032, 0.045, SHIN, paths.RIGHT, THIGH)}
 HUNG_FROM = {"left_shin": "left_thigh", "right_shin": "right_thigh"}
 # A shin ends in a foot: a box (heel, toe: metres behind and ahead of the ankle; width; height)
 # centred on the ankle as the print is, so the foot fills the print it stands in.
 FOOT = (0.12, 0.14, 0.09, 0.07)
-HAND = 0.045  # radius: a wrapped hand, its centre at the sleeve's end (half of it in the sleeve)
-# 5: bell sleeves half over the hands; 4: legs and hands wrapped in dark cloth, slimmer legs; 3:
-# sleeves widening to the wrist from a rounded shoulder, caps shaded sharp; 2: shins with feet
+# 6: thin legs, no arms (under the poncho; the sixth review: thick legs and ball hands read as a
+# gnome's); 5: bell sleeves half over the hands; 4: legs and hands wrapped in dark cloth, slimmer
+# legs; 3: sleeves widening to the wrist from a rounded shoulder, caps shaded sharp; 2: shins with feet
 # (limbs before that had none)
-SHAPE_KEY, SHAPE = "sandscape_limb_shape", 5
+SHAPE_KEY, SHAPE = "sandscape_limb_shape", 6
 SHARP_ANGLE = 0.9  # radians: caps and rims keep their edges; the sides shade smooth
 
 
@@ -70,12 +67,6 @@ def _limb_mesh(name, bottom, top, length, scale):
     # bmesh's cone is centred on its origin, its axis along Z: hang it from its top.
     bmesh.ops.create_cone(bm, cap_ends=True, segments=10, radius1=bottom * scale, radius2=top * scale,
                           depth=length * scale, matrix=Matrix.Translation((0.0, 0.0, -length * scale / 2)))
-    if name.endswith("Arm"):  # a rounded shoulder, not a cylinder's flat top; a hand in the wraps
-        bmesh.ops.create_uvsphere(bm, u_segments=10, v_segments=6, radius=top * scale)
-        hand = bmesh.ops.create_uvsphere(bm, u_segments=8, v_segments=6, radius=HAND * scale,
-                                         matrix=Matrix.Translation((0.0, 0.0, -length * scale)))
-        for face in {f for v in hand["verts"] for f in v.link_faces}:
-            face.material_index = 1
     if name.endswith("Shin"):
         heel, toe, width, height = (value * scale for value in FOOT)
         box = Matrix.Translation(((toe - heel) / 2, 0.0, -length * scale + height / 2))
@@ -88,11 +79,21 @@ def _limb_mesh(name, bottom, top, length, scale):
     return mesh
 
 
+def _remove_retired_limbs(walker):
+    """An older walker's arms (they hung out of bell sleeves; the poncho covers them now)."""
+    for child in list(walker.children_recursive):
+        if child.get(own.OBJECT_KEY) == own.WALKER_LIMB and child.get(LIMB_KEY) not in LIMBS:
+            mesh = child.data
+            bpy.data.objects.remove(child)
+            if mesh is not None and mesh.users == 0:
+                bpy.data.meshes.remove(mesh)
+
+
 def ensure_limbs(walker, cloth, scale, stance):
-    """The walker's limbs, made where missing, hung at their pivots (`stance` in scene units,
-    `scale` scene units per metre): thighs and arms from the body, shins from the knees. `cloth`:
-    {kind: material}; legs wear the wraps, arms the cloak and the wraps at the hand.
-    Returns {name: object}."""
+    """The walker's legs, made where missing, hung at their pivots (`stance` in scene units,
+    `scale` scene units per metre): thighs from the body, shins from the knees; they wear the
+    wraps (`cloth`: {kind: material}). Returns {name: object}."""
+    _remove_retired_limbs(walker)
     found = limbs(walker)
     collections = walker.users_collection
     for name, (bottom, top, length, side, pivot) in LIMBS.items():
@@ -100,8 +101,7 @@ def ensure_limbs(walker, cloth, scale, stance):
         title = "Sandscape Walker " + name.replace("_", " ").title()
         if limb is None or limb.get(SHAPE_KEY) != SHAPE:  # missing, or an older walker's shape
             mesh = _limb_mesh(title, bottom, top, length, scale)
-            for kind in (own.CLOAK, own.WRAPS) if name.endswith("arm") else (own.WRAPS,):
-                mesh.materials.append(cloth[kind])
+            mesh.materials.append(cloth[own.WRAPS])
         if limb is None:
             limb = bpy.data.objects.new(title, mesh)
             own.mark(limb, own.OBJECT_KEY, own.WALKER_LIMB, **{LIMB_KEY: name})
@@ -116,12 +116,9 @@ def ensure_limbs(walker, cloth, scale, stance):
         if name in HUNG_FROM:
             limb.location = (0.0, 0.0, -pivot * scale)
             continue
-        across = SHOULDER * scale if name.endswith("arm") else float(
-            np.clip(stance / 2, STANCE_LIMITS[0] * scale, STANCE_LIMITS[1] * scale))
+        across = float(np.clip(stance / 2, STANCE_LIMITS[0] * scale, STANCE_LIMITS[1] * scale))
         limb.location = (0.0, side * across, pivot * scale)
-        # A turn about X comes first in XYZ order: the hand moves out to its side, the swing
-        # about Y keyed below keeps it there.
-        limb.rotation_euler[0] = side * ARM_SPLAY if name.endswith("arm") else 0.0
+        limb.rotation_euler[0] = 0.0
     return found
 
 
@@ -134,8 +131,6 @@ def key_stride(walker, positions, frames, stride, scale):
         side = LIMBS[name][3]
         if name.endswith("shin"):  # bends back at the knee as its leg swings through
             swing = -gait.knee_bend(arc, stride, side)
-        elif name.endswith("arm"):
-            swing = gait.arm_swing(arc, stride, amplitude, side)
         else:
             swing = gait.leg_swing(arc, stride, amplitude, side)
         # A turn about local Y by -theta swings the limb's lower end forward (+X) by theta.

@@ -1,7 +1,7 @@
 """The stand-in walker's stride in plain numpy: legs swing as pendulums from the hips, phased to
 the prints core.paths plans, so each foot passes under its hip exactly where its print lies.
 
-Angles are forward swings in radians: positive puts the foot (or hand) ahead of its pivot.
+Angles are forward swings in radians: positive puts the foot ahead of its pivot.
 """
 
 import numpy as np
@@ -9,7 +9,6 @@ import numpy as np
 from .paths import LEFT
 
 MAX_SWING = 0.6  # radians: a longer stride than a leg can reach swings no further
-ARM_SHARE = 0.7  # an arm swings against its own side's leg, this much of the leg's angle
 KNEE_BEND = np.radians(60.0)  # the most a swinging knee bends (people walk with about 60-65)
 
 
@@ -33,11 +32,6 @@ def leg_swing(arc, stride, amplitude, side):
     again a stride later, moving forward (swinging through).
     """
     return -side * LEFT * amplitude * np.sin(np.pi * np.asarray(arc, np.float64) / stride)
-
-
-def arm_swing(arc, stride, amplitude, side):
-    """An arm swings against the leg on its own side."""
-    return -ARM_SHARE * leg_swing(arc, stride, amplitude, side)
 
 
 def knee_bend(arc, stride, side, most=KNEE_BEND):

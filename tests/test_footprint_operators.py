@@ -222,12 +222,12 @@ def test_add_walker_makes_a_walk_that_paints(walk):
     assert bpy.ops.sandscape.add_walker() == {"FINISHED"}  # updates, no second walker
     walkers = [o for o in bpy.data.objects if o.get("sandscape_object") == "walker"]
     assert len(walkers) == 1 and walk.walker == walkers[0]
-    # A 1.7 m figure standing on its origin (its hood peaks 17 cm over its head), six limbs, one red
-    # cloak, not a second on the re-run.
+    # A 1.7 m figure standing on its origin (its hood peaks 17 cm over its head), four limbs (the
+    # legs; the arms are under the poncho), one red cloak, not a second on the re-run.
     heights = [v.co.z for v in walkers[0].data.vertices]
     assert max(heights) == pytest.approx(1.87, abs=1e-5)
     limbs = [o for o in bpy.data.objects if o.get("sandscape_object") == "walker_limb"]
-    assert len(limbs) == 6 and all(limb.parent == walkers[0] or limb.parent in limbs for limb in limbs)
+    assert len(limbs) == 4 and all(limb.parent == walkers[0] or limb.parent in limbs for limb in limbs)
     to_figure = walkers[0].matrix_world.inverted()
     lowest = min((to_figure @ limb.matrix_world @ v.co).z for limb in limbs for v in limb.data.vertices)
     assert -0.03 <= lowest <= 0.0  # a planted foot sinks 2 cm into loose sand
@@ -235,8 +235,8 @@ def test_add_walker_makes_a_walk_that_paints(walk):
     for shin in (limb for limb in limbs if limb["sandscape_limb"].endswith("shin")):
         along = [v.co.x for v in shin.data.vertices]
         assert max(along) - min(along) == pytest.approx(0.26, abs=1e-5) and max(along) > 0.1
-    # One cloak, one golden trim, one dark wrap: the body wears the cloak and the trim, the arms
-    # the cloak and the wraps at the hands, the legs the wraps.
+    # One cloak, one golden trim, one dark wrap: the body wears the cloak and the trim, the legs
+    # the wraps.
     cloth = {kind: [m for m in bpy.data.materials if m.get("sandscape_material") == kind]
              for kind in ("cloak", "walker_trim", "walker_wraps")}
     assert all(len(found) == 1 for found in cloth.values())
@@ -244,9 +244,8 @@ def test_add_walker_makes_a_walk_that_paints(walk):
     assert list(walkers[0].data.materials) == [cloak, trim]
     assert {face.material_index for face in walkers[0].data.polygons} == {0, 1}  # each worn
     for limb in limbs:
-        worn = [cloak, wraps] if limb["sandscape_limb"].endswith("arm") else [wraps]
-        assert list(limb.data.materials) == worn
-        assert {face.material_index for face in limb.data.polygons} == set(range(len(worn)))
+        assert list(limb.data.materials) == [wraps]
+        assert {face.material_index for face in limb.data.polygons} == {0}
     assert bpy.ops.sandscape.paint_footprints() == {"FINISHED"}
     assert len(ours("points")[0].data.vertices) >= 2  # 1.25 s at a walking pace, 0.7 m strides
 
@@ -328,8 +327,9 @@ def test_add_walker_gives_an_older_walkers_shins_feet(walk):
 
 def test_add_walker_dresses_an_older_walker_in_the_cloak_it_wore(walk):
     """A walker saved before the scarf (figure and limb shape 3, everything in one cloak the artist
-    has recoloured): Add Walker again gives it the new body and limbs, keeps that cloak (its colour
-    too) and makes one trim and one wrap, nothing twice."""
+    has recoloured, arms hanging from its shoulders): Add Walker again gives it the new body and
+    legs, keeps that cloak (its colour too), removes the arms the poncho now covers and makes one
+    trim and one wrap, nothing twice."""
     walk.walker = None
     assert bpy.ops.sandscape.add_walker() == {"FINISHED"}
     walker = next(o for o in bpy.data.objects if o.get("sandscape_object") == "walker")
@@ -340,6 +340,15 @@ def test_add_walker_dresses_an_older_walker_in_the_cloak_it_wore(walk):
         old.from_pydata([(0, 0, 0), (0, 0, -0.4), (0.01, 0, -0.4)], [], [(0, 1, 2)])
         old.materials.append(cloak)
         obj.data, obj[key] = old, 3
+    arms = []
+    for side in ("left_arm", "right_arm"):
+        old = bpy.data.meshes.new("older " + side)
+        old.from_pydata([(0, 0, 0), (0, 0, -0.6), (0.01, 0, -0.6)], [], [(0, 1, 2)])
+        arm = bpy.data.objects.new("older " + side, old)
+        arm["sandscape_object"], arm["sandscape_limb"], arm["sandscape_limb_shape"] = "walker_limb", side, 3
+        arm.parent = walker
+        bpy.context.scene.collection.objects.link(arm)
+        arms.append(arm.name)
     newer = ("walker_trim", "walker_wraps")
     for material in [m for m in bpy.data.materials if m.get("sandscape_material") in newer]:
         bpy.data.materials.remove(material)
@@ -352,6 +361,6 @@ def test_add_walker_dresses_an_older_walker_in_the_cloak_it_wore(walk):
     assert list(walker.data.materials) == [cloak, trim]
     assert tuple(cloak.diffuse_color) == pytest.approx((0.1, 0.2, 0.6, 1.0))
     assert not [m for m in bpy.data.meshes if m.name.startswith("older ")]
+    assert not [name for name in arms if name in bpy.data.objects]
     for limb in limbs:
-        worn = [cloak, wraps] if limb["sandscape_limb"].endswith("arm") else [wraps]
-        assert list(limb.data.materials) == worn
+        assert list(limb.data.materials) == [wraps]

@@ -118,14 +118,12 @@ def test_each_foot_lands_on_its_print(sandscape, stride):
     assert 0.0 < lead
 
 
-def test_the_robe_hides_the_legs_and_the_arms_swing_clear_of_it(sandscape):
-    """The stand-in's robe (flaring from the shoulders to the shins) against its limbs over a walk
-    at a long stride: every leg vertex (thigh, shin, foot) above the hem stays inside the robe's
-    elliptic section at its height, and every arm vertex below the shoulder's curve stays outside
-    it, so no limb pokes through the cloth on any frame (measured in the walker's own space)."""
-    walker_module = sandscape.addon.walker_figure
-    hem_radius, shoulder_radius, hem, depth_share = walker_module.ROBE
-    top = walker_module.SHOULDERS
+def test_the_robe_hides_the_legs(sandscape):
+    """The stand-in's poncho (flaring from the shoulders to the shins, folded) against its legs over
+    a walk at a long stride: every leg vertex (thigh, shin, foot) above the hem stays inside the
+    robe's elliptic section at its height, taken in to the folds' deepest, so no leg pokes through
+    the cloth on any frame (measured in the walker's own space); and no arm hangs out of it."""
+    figure = sandscape.addon.walker_figure
     terrain = scenes.height_field(30.0, 30, lambda x, y: 0.05 * x, name="Sand")
     settings = scenes.footprint_settings(terrain, None, (1, 61), resolution=128)
     assert bpy.ops.sandscape.add_walker() == {"FINISHED"}
@@ -133,26 +131,51 @@ def test_the_robe_hides_the_legs_and_the_arms_swing_clear_of_it(sandscape):
     assert bpy.ops.sandscape.paint_footprints() == {"FINISHED"}
     scene, walker = bpy.context.scene, settings.walker
     limbs = sandscape.addon.walker_gait.limbs(walker)
+    assert sorted(limbs) == ["left_shin", "left_thigh", "right_shin", "right_thigh"]
 
-    def robe_share(local):  # under 1 inside the robe's section at the point's height
-        radius = hem_radius + (shoulder_radius - hem_radius) * (local[:, 2] - hem) / (top - hem)
-        return np.hypot(local[:, 0] / (depth_share * radius), local[:, 1] / radius)
+    def robe_share(local):  # under 1 inside the robe's section at the point's height, folds in
+        radius, depth = figure.section(local[:, 2])
+        radius = radius * (1.0 - figure.fold_depth(local[:, 2]))
+        return np.hypot(local[:, 0] / (depth * radius), local[:, 1] / radius)
 
-    legs, arms = [], []
+    legs = []
     for frame in range(1, 62, 3):
         scene.frame_set(frame)
         to_body = np.array(walker.matrix_world.inverted())
-        for name, limb in limbs.items():
+        for limb in limbs.values():
             world = np.array(limb.matrix_world)
             local = np.array([v.co[:] for v in limb.data.vertices])
             body = (np.c_[local, np.ones(len(local))] @ (to_body @ world).T)[:, :3]
-            if name.endswith(("thigh", "shin")):
-                legs.append(robe_share(body[body[:, 2] > hem]))
-            elif name.endswith("arm"):
-                arms.append(robe_share(body[(body[:, 2] > hem) & (body[:, 2] < top - 0.15)]))
-    legs, arms = np.concatenate(legs), np.concatenate(arms)
-    print(f"legs reach {legs.max():.2f} of the robe, arms come within {arms.min():.2f}")
-    assert len(legs) > 100 and legs.max() < 1.0 and arms.min() > 1.0
+            legs.append(robe_share(body[body[:, 2] > figure.HEM + figure.HEM_WAVE]))
+    legs = np.concatenate(legs)
+    print(f"legs reach {legs.max():.2f} of the robe's folded section")
+    assert len(legs) > 100 and legs.max() < 1.0
+
+
+def test_the_poncho_slopes_from_the_hood_and_flares_to_the_hem(sandscape):
+    """The figure's outline seen from behind (its half-width against height, in the figure's own
+    space): it widens all the way down from the hood's base to the hem (no square shoulder, no
+    waist), the shoulders sloping at 30-60 degrees from the horizontal, and the sides below them
+    steeper, flaring out by at least 10 cm to the hem."""
+    figure = sandscape.addon.walker_figure
+    mesh = figure.figure_mesh(1.0)
+    body = {i for face in mesh.polygons if face.material_index == figure.CLOAK_SLOT for i in face.vertices}
+    points = np.array([mesh.vertices[i].co[:] for i in sorted(body)])
+    bpy.data.meshes.remove(mesh)
+    # The outline from behind: each ring's vertex at the figure's left side (on a fold's crest).
+    below_hood = points[:, 2] <= figure.HOOD[0][0] + 1e-4
+    side = points[(np.abs(points[:, 0]) < 1e-4) & (points[:, 1] > 0) & below_hood]
+    rows, width = side[np.argsort(side[:, 2]), 2], side[np.argsort(side[:, 2]), 1]
+    print("half-width from the hem up:", *(f"{z:.2f}:{w:.3f}" for z, w in zip(rows, width, strict=True)))
+    assert len(rows) >= 6 and rows[0] == pytest.approx(figure.HEM)
+    assert (np.diff(width) < 0).all()
+    slope = np.degrees(np.arctan2(np.diff(rows), -np.diff(width)))  # from the horizontal
+    shoulders = rows[1:] > figure.SHOULDERS + 1e-4
+    print(f"shoulders slope {slope[shoulders].min():.0f}-{slope[shoulders].max():.0f} degrees, "
+          f"the sides {slope[~shoulders].min():.0f}-{slope[~shoulders].max():.0f}")
+    assert 30 <= slope[shoulders].min() and slope[shoulders].max() <= 60
+    assert slope[~shoulders].min() > slope[shoulders].max()
+    assert width[0] - width[rows <= figure.SHOULDERS][-1] >= 0.1
 
 
 def test_the_hood_hides_the_head_from_behind_and_shows_the_face(sandscape):
@@ -183,7 +206,7 @@ def test_the_scarf_lies_just_outside_the_cloak(sandscape):
     in the robe or the hood, and within 7 cm of it, so the scarf lies on the figure, not in the air."""
     figure = sandscape.addon.walker_figure
     mesh = figure.figure_mesh(1.0)
-    band_top = figure.ROBE[2] + figure.HEM_BAND
+    band_top = figure.HEM + figure.HEM_BAND + figure.HEM_WAVE
     scarf = {i for face in mesh.polygons if face.material_index == figure.TRIM_SLOT
              for i in face.vertices if mesh.vertices[i].co.z > band_top + 1e-6}
     points = np.array([mesh.vertices[i].co[:] for i in sorted(scarf)])
