@@ -27,6 +27,10 @@ SUN = (math.radians(6.0), 1.05)  # low, ahead-left of the walker, in view: slope
 # right and CAMERA_HEIGHT up: the prints run from the frame's foot to the walker's heels in every
 # frame (a camera at a fixed offset turned by the heading saw the trail come in from the side).
 CAMERA_BEHIND, CAMERA_SIDE, CAMERA_HEIGHT = 4.5, 0.5, 1.1  # metres
+# From the first frame to the last here the camera eases back and up to (behind, height): the
+# traveller walks on into the desert and the dunes open out under the end of the film (the sixth
+# review: the figure the same size in the same place for 10 s). The hero frame is before it.
+CAMERA_PULL_BACK = ((90, FRAMES[1]), (9.0, 2.6))
 CAMERA_LENS = 20.0  # mm: the near prints, the walker and the low sun in one frame
 CAMERA_TURN_FRAMES = 24  # the camera's heading is smoothed over this many frames either side
 WALK_SWAY = 0.03  # a straighter S than Add Walker's (it turns up to 11 degrees, not 32)
@@ -65,7 +69,8 @@ def follow_camera(scene, figure, terrain):
         walk.append(np.array(figure.matrix_world.translation))
     scene.frame_set(FRAMES[0])
     frames = np.arange(FRAMES[0], FRAMES[1] + 1)
-    places = trail_places(np.array(walk), CAMERA_BEHIND, CAMERA_SIDE, CAMERA_HEIGHT)[frames - WALK_FRAMES[0]]
+    behind, height = pulled_back(walk_frames)
+    places = trail_places(np.array(walk), behind, CAMERA_SIDE, height)[frames - WALK_FRAMES[0]]
     top = float(np.max([v[2] for v in terrain.bound_box]))
     floor = walker.ground_heights(scene, terrain, places[:, :2], top) + CAMERA_CLEARANCE
     places[:, 2] = np.maximum(places[:, 2], eased_lift(floor))
@@ -78,11 +83,21 @@ def follow_camera(scene, figure, terrain):
     return camera
 
 
+def pulled_back(frames):
+    """The camera's distance behind and height over the walker at `frames`: CAMERA_BEHIND and
+    CAMERA_HEIGHT, eased (smoothstep) over CAMERA_PULL_BACK's frames to its own."""
+    (first, last), (behind, height) = CAMERA_PULL_BACK
+    t = np.clip((np.asarray(frames, np.float64) - first) / (last - first), 0.0, 1.0)
+    eased = t * t * (3.0 - 2.0 * t)
+    return CAMERA_BEHIND + (behind - CAMERA_BEHIND) * eased, CAMERA_HEIGHT + (height - CAMERA_HEIGHT) * eased
+
+
 def trail_places(walk, behind, side, height):
     """Per frame, the place `behind` back along the walked path (before its start, straight back
     along its first heading), `side` to the right of the path's smoothed heading there and
     `height` over the walker's own height at that frame (not the trail's back there: a camera
-    below a walker on a rise sees the trail edge-on)."""
+    below a walker on a rise sees the trail edge-on). `behind` and `height`: one for all frames
+    or one per frame."""
     arc = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(walk[:, :2], axis=0), axis=1))])
     back = arc - behind
     moving = np.flatnonzero(arc > 1e-6)
@@ -93,7 +108,7 @@ def trail_places(walk, behind, side, height):
     heading[np.linalg.norm(heading, axis=1) < 1e-9] = start
     turn = smoothed(np.unwrap(np.arctan2(heading[:, 1], heading[:, 0])), CAMERA_TURN_FRAMES)
     right = np.stack([np.sin(turn), -np.cos(turn)], axis=-1)
-    return np.concatenate([trail + side * right, walk[:, 2:] + height], axis=-1)
+    return np.concatenate([trail + side * right, walk[:, 2:] + np.reshape(height, (-1, 1))], axis=-1)
 
 
 def eased_lift(floor):

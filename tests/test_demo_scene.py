@@ -101,24 +101,26 @@ def test_every_frame_the_trail_runs_toward_the_walker_and_the_sun_is_in_frame(sa
 
 def test_every_frame_the_prints_behind_the_walker_run_up_the_middle_of_the_frame(sandscape, demo_scene):
     """The camera walks the trail: on every 5th frame from the first, prints already made lie
-    between 2 and 4 m in front of the camera (the walker sets off before the film starts: starting
-    with it, frames 1-30 had none), each in frame, in its middle 60 % across and its lower 70 % (a
+    between 0.45 and 0.9 of the way from the camera to the walker (2-4 m at the film's start, 4.5 m
+    back; the walker sets off before the film starts: starting with it, frames 1-30 had none), each
+    in frame, in its middle 60 % across and its lower 70 % (a
     camera beside the walk saw the trail come in from the frame's left edge, x 0.0-0.2)."""
     from bpy_extras.object_utils import world_to_camera_view
     from mathutils import Vector
 
     scene = demo_scene
     footprints = sandscape.addon.footprints
-    terrain = scene.sandscape_footprints.terrain
+    terrain, walker = scene.sandscape_footprints.terrain, scene.sandscape_footprints.walker
     points = footprints.read_points(ours("footprints")[0])
     to_world = footprints.find_object(scene, "print_frame", terrain).matrix_world
     places, seen = [to_world @ Vector(co) for co in points["co"]], []
     for frame in range(scene.frame_start, scene.frame_end + 1, 5):
         scene.frame_set(frame)
         camera = scene.camera
+        reach = world_to_camera_view(scene, camera, walker.matrix_world.translation).z
         for place, birth in zip(places, points["birth_frame"], strict=True):
             ahead = world_to_camera_view(scene, camera, place)
-            if birth <= frame and 2.0 < ahead.z < 4.0:
+            if birth <= frame and 0.45 * reach < ahead.z < 0.9 * reach:
                 seen.append((frame, *ahead[:2]))
     seen = np.array(seen)
     print(f"{len(seen)} prints seen; x {seen[:, 1].min():.2f}-{seen[:, 1].max():.2f}, "
