@@ -18,9 +18,10 @@ from . import ownership as own
 from . import walker_gait
 
 HEIGHT = 1.7  # metres: a person-sized stand-in
-# Linear base colours. A crimson cloak: the low sun's warm light turned the earlier red
-# (0.36, 0.03, 0.02) burnt orange on screen (the fourth review: hue 17 degrees).
-CLOAK = (0.26, 0.012, 0.022, 1.0)
+# Linear base colours. A crimson cloak: the low sun's warm light turned the earlier reds burnt
+# orange and brick on screen ((0.36, 0.03, 0.02) hue 17 degrees, (0.26, 0.012, 0.022) hue 15 to
+# the fourth and seventh reviews); blue in the base keeps it crimson under that light.
+CLOAK = (0.3, 0.01, 0.07, 1.0)
 TRIM = (0.55, 0.3, 0.06, 1.0)  # the golden scarf and hem band of seed 004's traveller
 WRAPS = (0.035, 0.025, 0.02, 1.0)  # dark cloth wound round the legs and hands
 # A cloak from the neck to the shins over the arms, as the traveller's poncho of seed 004 (the sixth
@@ -33,7 +34,7 @@ HEM, SHOULDERS = ROBE[0][0], 1.37  # metres over the soles: the hem, the shoulde
 HEM_BAND = 0.07  # metres: the golden band's height over the hem
 # The cloth's folds: FOLDS round the robe, their depth a share of the radius at the hem, fading to
 # nothing at the shoulders (a smooth cone with a straight hem read as stiff board).
-FOLDS, FOLD_DEPTH = 8, 0.07
+FOLDS, FOLD_DEPTH = 8, 0.12
 HEM_WAVE = 0.02  # metres the hem rises where a fold goes in
 # 6: a poncho over the arms with sloping shoulders and folds, the hood one smooth taper; 5: the robe
 # down to the shins, the hood's peak tall and pointed; 4: a scarf and a hem band in gold, legs and
@@ -48,10 +49,11 @@ HEAD_FORWARD = 0.035  # metres: the face fills the hood's opening
 HOOD = ((1.47, 0.145, 0.84), (1.53, 0.137, 0.94), (1.59, 0.134, 1.0), (1.65, 0.128, 1.0),
         (1.71, 0.112, 1.0), (1.77, 0.085, 1.0), (1.82, 0.052, 1.0), (1.87, 0.012, 1.0))
 HOOD_FALL = 0.12  # metres the peak falls back
-# The scarf's wrap at the neck, as (height over the soles, metres off the cloth under it), and its
+# The scarf's wrap at the neck, as (height over the soles, metres off the cloth under it: lower, on
+# the shoulders, it read as a bar across them, a "T" with the tail), and its
 # tail down the back: from TAIL heights (top, end), widths (top, end), lifting off the flaring robe
 # by TAIL_LIFT (top, end), its end cut into two points.
-COLLAR = ((1.39, 0.025), (1.45, 0.02), (1.51, 0.015))
+COLLAR = ((1.44, 0.022), (1.49, 0.018), (1.54, 0.015))
 TAIL = (1.44, 0.74)
 TAIL_WIDTH = (0.13, 0.1)
 TAIL_LIFT = (0.03, 0.06)
