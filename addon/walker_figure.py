@@ -20,8 +20,10 @@ from . import walker_gait
 HEIGHT = 1.7  # metres: a person-sized stand-in
 # Linear base colours. A crimson cloak: the low sun's warm light turned the earlier reds burnt
 # orange and brick on screen ((0.36, 0.03, 0.02) hue 17 degrees, (0.26, 0.012, 0.022) hue 15 to
-# the fourth and seventh reviews); blue in the base keeps it crimson under that light.
-CLOAK = (0.3, 0.01, 0.07, 1.0)
+# the fourth and seventh reviews); blue in the base keeps it crimson under that light, and some
+# green keeps that channel off zero in the shaded frames (at 0.01 Draft clipped it, the eighth
+# review).
+CLOAK = (0.3, 0.035, 0.11, 1.0)
 TRIM = (0.55, 0.3, 0.06, 1.0)  # the golden scarf and hem band of seed 004's traveller
 WRAPS = (0.035, 0.025, 0.02, 1.0)  # dark cloth wound round the legs and hands
 # A cloak from the neck to the shins over the arms, as the traveller's poncho of seed 004 (the sixth
