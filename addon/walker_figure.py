@@ -88,7 +88,7 @@ def _ring_points(height, radius, depth, turn, folds=False):
     fall = HOOD_FALL * max(0.0, (height - fall_from) / (peak - fall_from))
     trough = (1.0 - np.cos(FOLDS * turn)) / 2 if folds else np.zeros_like(turn)  # crests at the back
     radius = radius * (1.0 - fold_depth(height) * trough)
-    lift = HEM_WAVE * trough if height <= HEM + HEM_BAND + 1e-9 else 0.0 * trough  # the hem rises in a fold
+    lift = HEM_WAVE * trough * (height <= HEM + HEM_BAND + 1e-9)  # the hem and its band rise in a fold
     return np.stack([depth * radius * np.cos(turn) - fall, radius * np.sin(turn), height + lift])
 
 
