@@ -14,6 +14,7 @@ import bpy
 import numpy as np
 from mathutils import Matrix
 
+from ..node_groups import helper as h
 from . import ownership as own
 from . import walker_gait
 
@@ -33,35 +34,43 @@ WRAPS = (0.035, 0.025, 0.02, 1.0)  # dark cloth wound round the legs and hands
 ROBE = ((0.36, 0.37, 0.8), (0.8, 0.32, 0.77), (1.12, 0.275, 0.72), (1.29, 0.248, 0.68),
         (1.37, 0.226, 0.68), (1.42, 0.19, 0.72))
 HEM, SHOULDERS = ROBE[0][0], 1.37  # metres over the soles: the hem, the shoulders' points
-HEM_BAND = 0.07  # metres: the golden band's height over the hem
+HEM_BAND = 0.04  # metres: the golden band's height over the hem (7 cm read as a plank, the eighth review)
 # The cloth's folds: FOLDS round the robe, their depth a share of the radius at the hem, fading to
-# nothing at the shoulders (a smooth cone with a straight hem read as stiff board).
-FOLDS, FOLD_DEPTH = 8, 0.12
+# nothing at the shoulders (a smooth cone with a straight hem read as stiff board; folds 12 % deep
+# did not show, the red even across the hem, the eighth review).
+FOLDS, FOLD_DEPTH = 8, 0.24
 HEM_WAVE = 0.02  # metres the hem rises where a fold goes in
-# 6: a poncho over the arms with sloping shoulders and folds, the hood one smooth taper; 5: the robe
-# down to the shins, the hood's peak tall and pointed; 4: a scarf and a hem band in gold, legs and
-# hands wrapped dark; 3: the robe and a hood (2: the robe under a bare head on a neck; 1: a torso
-# over the hips)
-FIGURE_SHAPE_KEY, FIGURE_SHAPE = "sandscape_figure_shape", 6
+# The cloak darkens into a fold's trough by up to FOLD_SHADE of its colour, from a point attribute
+# (1 in the deepest trough): with the low sun ahead the camera sees the robe's back in shade, lit by
+# the sky alone, where twice as deep folds still did not show.
+FOLD_ATTRIBUTE, FOLD_SHADE = "sandscape_fold", 0.55
+# 7: the hood shorter over a dark face, the scarf's tail across the back to one side, folds twice as
+# deep, a narrower hem band; 6: a poncho over the arms with sloping shoulders and folds, the hood
+# one smooth taper; 5: the robe down to the shins, the hood's peak tall and pointed; 4: a scarf and
+# a hem band in gold, legs and hands wrapped dark; 3: the robe and a hood (2: the robe under a bare
+# head on a neck; 1: a torso over the hips)
+FIGURE_SHAPE_KEY, FIGURE_SHAPE = "sandscape_figure_shape", 7
 HEAD = 0.11  # radius; its top at HEIGHT
-HEAD_FORWARD = 0.035  # metres: the face fills the hood's opening
+HEAD_FORWARD = 0.035  # metres: the face fills the hood's opening, in the dark wraps (the hood's shadow)
 # Above the robe, as its rings: a hood narrowing in one curve from the shoulders over the head to
 # a tall peak that falls back, the traveller's of seed 004 (a neck narrowing under a rounded crown
-# read as a cone on an egg; a short rounded peak, as a child's duffel hood).
+# read as a cone on an egg; a short rounded peak, as a child's duffel hood; a peak 17 cm over the
+# head, as a capirote, the eighth review).
 HOOD = ((1.47, 0.145, 0.84), (1.53, 0.137, 0.94), (1.59, 0.134, 1.0), (1.65, 0.128, 1.0),
-        (1.71, 0.112, 1.0), (1.77, 0.085, 1.0), (1.82, 0.052, 1.0), (1.87, 0.012, 1.0))
-HOOD_FALL = 0.12  # metres the peak falls back
+        (1.7, 0.113, 1.0), (1.74, 0.088, 1.0), (1.775, 0.052, 1.0), (1.8, 0.012, 1.0))
+HOOD_FALL = 0.09  # metres the peak falls back
 # The scarf's wrap at the neck, as (height over the soles, metres off the cloth under it: lower, on
-# the shoulders, it read as a bar across them, a "T" with the tail), and its
-# tail down the back: from TAIL heights (top, end), widths (top, end), lifting off the flaring robe
-# by TAIL_LIFT (top, end), its end cut into two points.
-COLLAR = ((1.44, 0.022), (1.49, 0.018), (1.54, 0.015))
-TAIL = (1.44, 0.74)
-TAIL_WIDTH = (0.13, 0.1)
-TAIL_LIFT = (0.03, 0.06)
-TAIL_SWAY = 0.04  # metres: the tail bends sideways as a breeze takes it
+# the shoulders, it read as a bar across them), and its tail: from TAIL heights (top, end), widths
+# (top, end), lifting off the flaring robe by TAIL_LIFT (top, end), its end cut into two points. It
+# crosses the back to the figure's left, TAIL_TURN radians round at its end (hanging straight
+# down the middle it made a "T" with the wrap, the eighth review).
+COLLAR = ((1.45, 0.02), (1.5, 0.016))
+TAIL = (1.45, 0.9)
+TAIL_WIDTH = (0.1, 0.07)
+TAIL_LIFT = (0.02, 0.05)
+TAIL_TURN = 1.1
 ROBE_SEGMENTS = 32
-CLOAK_SLOT, TRIM_SLOT = 0, 1  # the body's material slots
+CLOAK_SLOT, TRIM_SLOT, FACE_SLOT = 0, 1, 2  # the body's material slots
 
 
 def profile():
@@ -80,7 +89,13 @@ def section(heights):
 
 def fold_depth(heights):
     """How far in (a share of the radius) the folds reach at `heights`: deepest at the hem."""
-    return FOLD_DEPTH * np.clip((SHOULDERS - np.asarray(heights)) / (SHOULDERS - HEM), 0.0, 1.0) ** 1.5
+    return FOLD_DEPTH * fold_reach(heights)
+
+
+def fold_reach(heights):
+    """How far the folds have formed at `heights`: 1 at the hem, 0 at the shoulders (their points),
+    where the cloth hangs from."""
+    return np.clip((SHOULDERS - np.asarray(heights)) / (SHOULDERS - HEM), 0.0, 1.0)
 
 
 def _ring_points(height, radius, depth, turn, folds=False):
@@ -94,7 +109,14 @@ def _ring_points(height, radius, depth, turn, folds=False):
 
 def _lathe(bm, rings_at, material, close_bottom=False, close_top=False, folds=False):
     turn = np.linspace(0.0, 2 * np.pi, ROBE_SEGMENTS, endpoint=False)
+    if folds:  # a new layer first: adding one invalidates the verts made before it
+        layer = bm.verts.layers.float.get(FOLD_ATTRIBUTE) or bm.verts.layers.float.new(FOLD_ATTRIBUTE)
     rings = [[bm.verts.new(p) for p in _ring_points(*ring, turn, folds).T] for ring in rings_at]
+    if folds:
+        for ring, verts in zip(rings_at, rings, strict=True):
+            shade = np.sqrt(fold_reach(ring[0])) * (1.0 - np.cos(FOLDS * turn)) / 2
+            for vert, value in zip(verts, shade, strict=True):
+                vert[layer] = value
     faces = [bm.faces.new(rings[0][::-1])] if close_bottom else []
     for low, high in itertools.pairwise(rings):
         for i in range(ROBE_SEGMENTS):
@@ -107,7 +129,8 @@ def _lathe(bm, rings_at, material, close_bottom=False, close_top=False, folds=Fa
 
 
 def _tail(bm):
-    """The scarf's tail: a strip of rows down the back (-X), three points across."""
+    """The scarf's tail: a strip of rows from the back of the neck (-X) across the back and round to
+    the right side (-Y), three points across."""
     rows = []
     steps = np.linspace(0.0, 1.0, 12)
     for row, t in enumerate(steps):
@@ -115,8 +138,7 @@ def _tail(bm):
         radius, depth = section(height)
         radius += TAIL_LIFT[0] + (TAIL_LIFT[1] - TAIL_LIFT[0]) * t
         half = (TAIL_WIDTH[0] + (TAIL_WIDTH[1] - TAIL_WIDTH[0]) * t) / 2
-        middle = TAIL_SWAY * np.sin(np.pi * t)
-        turn = np.pi + (middle + np.array([-half, 0.0, half])) / radius
+        turn = np.pi - TAIL_TURN * t ** 1.3 + np.array([-half, 0.0, half]) / radius
         points = _ring_points(height, radius, depth, turn)
         if row == len(steps) - 1:
             points[2, 1] += 0.06  # the end's middle rises: two points
@@ -129,9 +151,9 @@ def _tail(bm):
 def figure_mesh(scale):
     """A low-poly figure's body standing on its origin facing +X: a folded poncho over the arms,
     broader across than deep, with a golden band at its hem, whose shoulders slope into a peaked
-    hood; a head; a scarf at the neck with its tail down the back (its legs are walker_gait's,
-    swinging inside the robe, the shins showing below it). `scale`: scene units per metre. Slots:
-    cloak, trim."""
+    hood; a head in the dark wraps; a scarf at the neck with its tail across the back (its legs are
+    walker_gait's, swinging inside the robe, the shins showing below it). `scale`: scene units per
+    metre. Slots: cloak, trim, face."""
     bm = bmesh.new()
     rings = profile()
     bands = [TRIM_SLOT] * ROBE_SEGMENTS + [CLOAK_SLOT] * (ROBE_SEGMENTS * (len(rings) - 2))
@@ -141,8 +163,10 @@ def figure_mesh(scale):
     collar = zip(heights, radii + lifts, depths, strict=True)
     _lathe(bm, collar, [TRIM_SLOT] * (ROBE_SEGMENTS * (len(COLLAR) - 1)))
     _tail(bm)
-    bmesh.ops.create_uvsphere(bm, u_segments=12, v_segments=8, radius=HEAD,
-                              matrix=Matrix.Translation((HEAD_FORWARD, 0.0, HEIGHT - HEAD)))
+    head = bmesh.ops.create_uvsphere(bm, u_segments=12, v_segments=8, radius=HEAD,
+                                     matrix=Matrix.Translation((HEAD_FORWARD, 0.0, HEIGHT - HEAD)))
+    for face in {face for vert in head["verts"] for face in vert.link_faces}:
+        face.material_index = FACE_SLOT
     walker_gait.shade_smooth_but_edges(bm)
     bmesh.ops.scale(bm, vec=(scale, scale, scale), verts=bm.verts)
     mesh = bpy.data.meshes.new("Sandscape Walker")
@@ -162,12 +186,28 @@ def _new_material(kind):
     name, colour, roughness = MATERIALS[kind]
     material = own.mark(bpy.data.materials.new(name), own.MATERIAL_KEY, kind)
     material.diffuse_color = colour
-    nodes = material.node_tree.nodes if material.node_tree else ()
+    tree = material.node_tree
+    nodes = tree.nodes if tree else ()
     shader = next((n for n in nodes if n.bl_idname == "ShaderNodeBsdfPrincipled"), None)
     if shader is not None:
         shader.inputs["Base Color"].default_value = colour
         shader.inputs["Roughness"].default_value = roughness
+        if kind == own.CLOAK:
+            _shade_folds(tree, shader, colour)
     return material
+
+
+def _shade_folds(tree, shader, colour):
+    """The cloak's colour darkened into its folds' troughs (FOLD_ATTRIBUTE): the artist recolours
+    the cloak on the Mix node's A."""
+    fold = h.add_node(tree, "ShaderNodeAttribute", (shader.location.x - 400, shader.location.y - 200),
+                      label="Fold Trough", attribute_name=FOLD_ATTRIBUTE)
+    shade = h.add_node(tree, "ShaderNodeMix", (shader.location.x - 200, shader.location.y),
+                       label="Cloak Colour", data_type="RGBA", blend_type="MULTIPLY")
+    h.socket(shade.inputs, "A").default_value = colour
+    h.socket(shade.inputs, "B").default_value = (1.0 - FOLD_SHADE,) * 3 + (1.0,)
+    h.link(tree, fold.outputs["Fac"], h.socket(shade.inputs, "Factor"))
+    h.link(tree, h.socket(shade.outputs, "Result"), shader.inputs["Base Color"])
 
 
 class Cloth(dict):
@@ -187,7 +227,7 @@ class Cloth(dict):
 
 
 def dress(walker, cloth):
-    """Give the body's new mesh its slots: cloak, trim (`cloth`: a Cloth). Appended to a mesh without
-    any: clearing a mesh's slots clears its faces' material indices too."""
-    walker.data.materials.append(cloth[own.CLOAK])
-    walker.data.materials.append(cloth[own.CLOAK_TRIM])
+    """Give the body's new mesh its slots: cloak, trim, face (`cloth`: a Cloth). Appended to a mesh
+    without any: clearing a mesh's slots clears its faces' material indices too."""
+    for kind in (own.CLOAK, own.CLOAK_TRIM, own.WRAPS):
+        walker.data.materials.append(cloth[kind])

@@ -29,14 +29,16 @@ LIMBS = {"left_thigh": (0.05, 0.065, THIGH, paths.LEFT, HIPS),
          "left_shin": (0.032, 0.045, SHIN, paths.LEFT, THIGH),
          "right_shin": (0.032, 0.045, SHIN, paths.RIGHT, THIGH)}
 HUNG_FROM = {"left_shin": "left_thigh", "right_shin": "right_thigh"}
-# A shin ends in a foot: a box (heel, toe: metres behind and ahead of the ankle; width; height)
-# centred on the ankle as the print is, so the foot fills the print it stands in.
+# A shin ends in a foot: (heel, toe: metres behind and ahead of the ankle; width; height) centred
+# on the ankle as the print is, so the foot fills the print it stands in; a flattened cone from the
+# heel narrowing to TOE_SHARE of its width at the toe (a box read as a block, the eighth review).
 FOOT = (0.12, 0.14, 0.09, 0.07)
-# 6: thin legs, no arms (under the poncho; the sixth review: thick legs and ball hands read as a
-# gnome's); 5: bell sleeves half over the hands; 4: legs and hands wrapped in dark cloth, slimmer
-# legs; 3: sleeves widening to the wrist from a rounded shoulder, caps shaded sharp; 2: shins with feet
-# (limbs before that had none)
-SHAPE_KEY, SHAPE = "sandscape_limb_shape", 6
+TOE_SHARE = 0.55
+# 7: feet tapering to the toe; 6: thin legs, no arms (under the poncho; the sixth review: thick legs
+# and ball hands read as a gnome's); 5: bell sleeves half over the hands; 4: legs and hands wrapped
+# in dark cloth, slimmer legs; 3: sleeves widening to the wrist from a rounded shoulder, caps shaded
+# sharp; 2: shins with feet (limbs before that had none)
+SHAPE_KEY, SHAPE = "sandscape_limb_shape", 7
 SHARP_ANGLE = 0.9  # radians: caps and rims keep their edges; the sides shade smooth
 
 
@@ -69,9 +71,12 @@ def _limb_mesh(name, bottom, top, length, scale):
                           depth=length * scale, matrix=Matrix.Translation((0.0, 0.0, -length * scale / 2)))
     if name.endswith("Shin"):
         heel, toe, width, height = (value * scale for value in FOOT)
-        box = Matrix.Translation(((toe - heel) / 2, 0.0, -length * scale + height / 2))
-        box = box @ Matrix.Diagonal((heel + toe, width, height, 1.0))
-        bmesh.ops.create_cube(bm, size=1.0, matrix=box)
+        # A unit cone turned onto its side (its axis from -Z to +X: heel to toe), then sized.
+        foot = Matrix.Translation(((toe - heel) / 2, 0.0, -length * scale + height / 2))
+        foot = foot @ Matrix.Diagonal((heel + toe, width / 2, height / 2, 1.0))
+        foot = foot @ Matrix.Rotation(np.pi / 2, 4, "Y")
+        bmesh.ops.create_cone(bm, cap_ends=True, segments=10, radius1=1.0, radius2=TOE_SHARE, depth=1.0,
+                              matrix=foot)
     shade_smooth_but_edges(bm)
     mesh = bpy.data.meshes.new(name)
     bm.to_mesh(mesh)

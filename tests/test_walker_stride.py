@@ -217,4 +217,35 @@ def test_the_scarf_lies_just_outside_the_cloak(sandscape):
     share = np.hypot(points[:, 0] / (depth * radius), points[:, 1] / radius)
     gap = np.hypot(points[:, 0], points[:, 1]) * (1.0 - 1.0 / share)
     print(f"{len(points)} scarf vertices, {gap.min() * 100:.1f}-{gap.max() * 100:.1f} cm off the cloth")
-    assert len(points) > 50 and points[:, 2].min() < 0.8 and 0.005 < gap.min() and gap.max() < 0.07
+    assert len(points) > 50 and points[:, 2].min() < 1.0 and 0.005 < gap.min() and gap.max() < 0.07
+
+
+def test_the_cloak_darkens_into_its_folds(sandscape):
+    """The cloak's fold shading, in the figure's own space: the fold attribute is 1 in the hem's
+    troughs and 0 on its crests, where the cloth really is taken in and out (the trough vertices
+    nearer the axis than the crests at the same height), fading to 0 at the shoulders' points; a new
+    cloak's Base Color multiplies its colour by the attribute's share of FOLD_SHADE."""
+    figure = sandscape.addon.walker_figure
+    mesh = figure.figure_mesh(1.0)
+    points = np.array([v.co[:] for v in mesh.vertices])
+    fold = np.array([d.value for d in mesh.attributes[figure.FOLD_ATTRIBUTE].data])
+    bpy.data.meshes.remove(mesh)
+    at_hem = np.abs(points[:, 2] - figure.HEM) < 1e-4  # the lowest ring, the hem's wave aside
+    at_hem |= np.abs(points[:, 2] - figure.HEM - figure.HEM_WAVE) < 1e-4
+    radius, depth = figure.section(figure.HEM)
+    share = np.hypot(points[at_hem, 0] / depth, points[at_hem, 1]) / radius
+    troughs, crests = fold[at_hem] > 0.99, fold[at_hem] < 0.01
+    print(f"hem: {troughs.sum()} trough vertices at {share[troughs].mean():.2f} of the section, "
+          f"{crests.sum()} crests at {share[crests].mean():.2f}")
+    assert troughs.sum() == crests.sum() == figure.FOLDS
+    assert share[troughs].max() == pytest.approx(1.0 - figure.FOLD_DEPTH)
+    assert share[crests].min() == pytest.approx(1.0)
+    assert fold[points[:, 2] >= figure.SHOULDERS - 1e-4].max() == 0.0
+    cloth = figure.Cloth(bpy.data.objects.new("Figure", None))
+    tree = cloth[sandscape.addon.ownership.CLOAK].node_tree
+    principled = next(n for n in tree.nodes if n.bl_idname == "ShaderNodeBsdfPrincipled")
+    mix = principled.inputs["Base Color"].links[0].from_node
+    attribute = next(link.from_node for i in mix.inputs for link in i.links)
+    assert mix.blend_type == "MULTIPLY" and attribute.attribute_name == figure.FOLD_ATTRIBUTE
+    darkest = np.array(next(i for i in mix.inputs if i.name == "B" and i.enabled).default_value)
+    assert darkest[:3] == pytest.approx(1.0 - figure.FOLD_SHADE)
