@@ -223,7 +223,10 @@ DEFECT_JITTER = 0.5  # wavelengths: how far a pair's centre strays from its cell
 DEFECT_HALF = (1.0, 2.0)  # wavelengths: half the inserted crest's length, from .. to
 DEFECT_REACH = (2.6, 3.5)  # wavelengths: the pair's phase whole within the first, gone at the second
 DEFECT_CORE = 0.5  # wavelengths: the ripples flatten toward a core (no point where the normal spins)
-DEFECT_LAYERS = ((0.0, 2.0), (0.5, 3.0))  # (lattice offset in cells, hash layer): two lattices
+# (lattice offset in cells, hash layer): four lattices (two left 5 crest ends per 1000 px of traced
+# crest in the poster's foreground, the seventh review; real ripple fields fork and end every few
+# wavelengths)
+DEFECT_LAYERS = ((0.0, 2.0), (0.5, 3.0), (0.25, 4.0), (0.75, 5.0))
 
 
 def ripple_defects(position, direction, wavelength, share, offset, layer):
@@ -287,7 +290,7 @@ def ripples(position, normal, wind, wavelength, amplitude, steep_fraction=0.2, l
     """(height, normal) of the ripples at world positions (..., 3) with world normals.
 
     Crests run across the wind and wander: phase = 2 pi ((p . wind) / wavelength + meander (2 m - 1)),
-    m the lattice noise (ripple_lattice), plus the dislocation pairs of two lattices
+    m the lattice noise (ripple_lattice), plus the dislocation pairs of the DEFECT_LAYERS lattices
     (ripple_defects) in `defects` of their cells; height = amplitude x weight x (1 - variation g) x
     (1 - flatten) x keep x sin(phase), flatten 1 where a foot trampled them, keep the flattening
     toward the defects' cores.

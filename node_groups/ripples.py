@@ -3,7 +3,7 @@
 Crests run across the wind and wander: phase = 2 pi ((p . wind) / Wavelength + Meander (2 m - 1)),
 p the world position, wind the horizontal wind direction and m a smooth value noise on a lattice
 of Meander Scale (so crests bend, join and split as real ones do, rather than ruling the sand
-like corduroy), plus the pairs of Y-junctions of two Ripple Defects lattices in Defects of their
+like corduroy), plus the pairs of Y-junctions of four Ripple Defects lattices in Defects of their
 cells (a crest inserted between each pair); height = Amplitude x weight x (1 - Variation g) x
 (1 - Flatten) x keep x sin(phase), g a second value of the same noise, Flatten 1 where a foot
 trampled them, keep the defects' flattening toward their cores. The weight fades the
@@ -20,7 +20,7 @@ from . import helper as h
 from . import ripple_defects
 
 NAME = "Sandscape Ripples"
-VERSION = 4
+VERSION = 5  # 5: four defect lattices (two left 5 crest ends per 1000 px of crest, the seventh review)
 TREE_TYPE = "ShaderNodeTree"
 WAVELENGTH, AMPLITUDE = 0.12, 0.004  # metres: ripples of fine sand
 MEANDER_SCALE = 0.8  # metres: about 7 wavelengths between one bend of a crest and the next
@@ -75,8 +75,7 @@ def build(tree):
     shift = h.math(tree, "MULTIPLY", centred.outputs[0], meander_radians.outputs[0], label="Meander Shift")
     meandered = h.math(tree, "ADD", straight.outputs[0], shift.outputs[0], label="Meandering Phase")
     defects, defect_nodes = _defects(tree, position.outputs["Position"], direction, inputs)
-    broken = h.math(tree, "ADD", meandered.outputs[0], defects["phase"], label="+ Defects A")
-    phase = h.math(tree, "ADD", broken.outputs[0], defects["phase 2"], label="Phase")
+    phase = h.math(tree, "ADD", meandered.outputs[0], defects["phase"], label="Phase")
     wave = h.math(tree, "SINE", phase.outputs[0], label="sin")
     wave_slope = h.math(tree, "COSINE", phase.outputs[0], label="cos")
 
@@ -140,7 +139,7 @@ def build(tree):
     h.frame(tree, "Wind Direction", direction_nodes)
     h.frame(tree, "Lattice Noise (m, g)", lattice_nodes)
     h.frame(tree, "Crests across the Wind, Meandering", (position, along, cycles, straight, meander_radians,
-                                                          centred, shift, meandered, broken, phase, wave,
+                                                          centred, shift, meandered, phase, wave,
                                                           wave_slope))
     h.frame(tree, "Crests that Split and End", defect_nodes)
     h.frame(tree, "Fading on Steep and Lee Slopes", (split, upright, slope, steepness, steep_loss, steep,
@@ -153,9 +152,9 @@ def build(tree):
 
 
 def _defects(tree, position, direction, inputs):
-    """Both Ripple Defects lattices summed: phase, phase gradient, keep and its gradient as
-    sockets in a dict, and the nodes made."""
-    lattices = []
+    """The Ripple Defects lattices summed: phase, phase gradient, keep and its gradient as sockets
+    in a dict, and the nodes made (keep multiplies, so its gradient by the product rule)."""
+    lattices, nodes = [], []
     for offset, layer in sand.DEFECT_LAYERS:
         node = h.add_node(tree, "ShaderNodeGroup", node_tree=h.ensure_group(ripple_defects),
                           label=f"Ripple Defects {len(lattices) + 1}",
@@ -165,18 +164,24 @@ def _defects(tree, position, direction, inputs):
         h.link(tree, inputs["Wavelength"], node.inputs["Wavelength"])
         h.link(tree, inputs["Defects"], node.inputs["Share"])
         lattices.append(node)
-    first, second = (node.outputs for node in lattices)
-    keep = h.math(tree, "MULTIPLY", first["Keep"], second["Keep"], label="Keep")
-    part_first = h.vector_math(tree, "SCALE", first["Keep Gradient"], label="∇Keep 1 × Keep 2")
-    h.link(tree, second["Keep"], part_first.inputs["Scale"])
-    part_second = h.vector_math(tree, "SCALE", second["Keep Gradient"], label="∇Keep 2 × Keep 1")
-    h.link(tree, first["Keep"], part_second.inputs["Scale"])
-    keep_gradient = h.vector_math(tree, "ADD", part_first.outputs[0], part_second.outputs[0], label="∇Keep")
-    phase_gradient = h.vector_math(tree, "ADD", first["Phase Gradient"], second["Phase Gradient"],
-                                   label="∇Defect Phase")
-    return ({"phase": first["Phase"], "phase 2": second["Phase"], "phase gradient": phase_gradient.outputs[0],
-             "keep": keep.outputs[0], "keep gradient": keep_gradient.outputs[0]},
-            (*lattices, keep, part_first, part_second, keep_gradient, phase_gradient))
+    first = lattices[0].outputs
+    phase, phase_gradient = first["Phase"], first["Phase Gradient"]
+    keep, keep_gradient = first["Keep"], first["Keep Gradient"]
+    for number, lattice in enumerate(lattices[1:], start=2):
+        out, so_far = lattice.outputs, f"1-{number}"
+        summed = h.math(tree, "ADD", phase, out["Phase"], label=f"Defect Phase {so_far}")
+        bent = h.vector_math(tree, "ADD", phase_gradient, out["Phase Gradient"], label=f"∇Phase {so_far}")
+        part_before = h.vector_math(tree, "SCALE", keep_gradient, label=f"∇Keep before × Keep {number}")
+        h.link(tree, out["Keep"], part_before.inputs["Scale"])
+        part_this = h.vector_math(tree, "SCALE", out["Keep Gradient"], label=f"∇Keep {number} × Keep before")
+        h.link(tree, keep, part_this.inputs["Scale"])
+        both = h.vector_math(tree, "ADD", part_before.outputs[0], part_this.outputs[0], label="∇Keep so far")
+        kept = h.math(tree, "MULTIPLY", keep, out["Keep"], label=f"Keep {so_far}")
+        phase, phase_gradient = summed.outputs[0], bent.outputs[0]
+        keep, keep_gradient = kept.outputs[0], both.outputs[0]
+        nodes += [summed, bent, part_before, part_this, both, kept]
+    return ({"phase": phase, "phase gradient": phase_gradient, "keep": keep, "keep gradient": keep_gradient},
+            (*lattices, *nodes))
 
 
 def _lattice_noise(tree, position, lattice_scale):
