@@ -1,6 +1,6 @@
 """The stand-in walker's body and its cloth: one lathed surface from the poncho's hem to the hood's
 peak (the traveller of seed 004, its arms under the cloth), a head in the hood, a scarf wrapped at
-the neck whose tail hangs down the back, a band at the hem, and the three materials its body and
+the neck whose tail streams behind, a band at the hem, and the three materials its body and
 legs wear.
 
 Materials are ours (MATERIAL_KEY "cloak", "walker_trim", "walker_wraps"), found in the walker's and
@@ -44,12 +44,12 @@ HEM_WAVE = 0.02  # metres the hem rises where a fold goes in
 # (1 in the deepest trough): with the low sun ahead the camera sees the robe's back in shade, lit by
 # the sky alone, where twice as deep folds still did not show.
 FOLD_ATTRIBUTE, FOLD_SHADE = "sandscape_fold", 0.55
-# 7: the hood shorter over a dark face, the scarf's tail across the back to one side, folds twice as
-# deep, a narrower hem band; 6: a poncho over the arms with sloping shoulders and folds, the hood
-# one smooth taper; 5: the robe down to the shins, the hood's peak tall and pointed; 4: a scarf and
-# a hem band in gold, legs and hands wrapped dark; 3: the robe and a hood (2: the robe under a bare
-# head on a neck; 1: a torso over the hips)
-FIGURE_SHAPE_KEY, FIGURE_SHAPE = "sandscape_figure_shape", 7
+# 8: the scarf's tail streaming behind; 7: the hood shorter over a dark face, the scarf's tail
+# across the back to one side, folds twice as deep, a narrower hem band; 6: a poncho over the arms
+# with sloping shoulders and folds, the hood one smooth taper; 5: the robe down to the shins, the
+# hood's peak tall and pointed; 4: a scarf and a hem band in gold, legs and hands wrapped dark; 3:
+# the robe and a hood (2: the robe under a bare head on a neck; 1: a torso over the hips)
+FIGURE_SHAPE_KEY, FIGURE_SHAPE = "sandscape_figure_shape", 8
 HEAD = 0.11  # radius; its top at HEIGHT
 HEAD_FORWARD = 0.035  # metres: the face fills the hood's opening, in the dark wraps (the hood's shadow)
 # Above the robe, as its rings: a hood narrowing in one curve from the shoulders over the head to
@@ -60,15 +60,16 @@ HOOD = ((1.47, 0.145, 0.84), (1.53, 0.137, 0.94), (1.59, 0.134, 1.0), (1.65, 0.1
         (1.7, 0.113, 1.0), (1.74, 0.088, 1.0), (1.775, 0.052, 1.0), (1.8, 0.012, 1.0))
 HOOD_FALL = 0.09  # metres the peak falls back
 # The scarf's wrap at the neck, as (height over the soles, metres off the cloth under it: lower, on
-# the shoulders, it read as a bar across them), and its tail: from TAIL heights (top, end), widths
-# (top, end), lifting off the flaring robe by TAIL_LIFT (top, end), its end cut into two points. It
-# crosses the back to the figure's left, TAIL_TURN radians round at its end (hanging straight
-# down the middle it made a "T" with the wrap, the eighth review).
+# the shoulders, it read as a bar across them). Its tail streams from the nape behind the figure
+# and to its left, as the traveller's does in the wind: TAIL_LENGTH along a heading TAIL_SWEEP
+# radians off straight back, falling TAIL_DROP by its end, waving TAIL_WAVE (metres, up and down and
+# sideways, growing to the end), TAIL_WIDTH (start, end) high, its end cut into two points (hanging
+# down the middle it made a "T" with the wrap; glued diagonally across the back, a stiff sash, the
+# eighth and ninth reviews).
 COLLAR = ((1.45, 0.02), (1.5, 0.016))
-TAIL = (1.45, 0.9)
-TAIL_WIDTH = (0.1, 0.07)
-TAIL_LIFT = (0.02, 0.05)
-TAIL_TURN = 1.1
+TAIL_START = 1.475  # metres over the soles: the tail leaves the wrap at the nape
+TAIL_LENGTH, TAIL_SWEEP, TAIL_DROP, TAIL_WAVE = 0.85, 0.75, 0.3, 0.06
+TAIL_WIDTH = (0.09, 0.06)
 ROBE_SEGMENTS = 32
 CLOAK_SLOT, TRIM_SLOT, FACE_SLOT = 0, 1, 2  # the body's material slots
 
@@ -128,20 +129,32 @@ def _lathe(bm, rings_at, material, close_bottom=False, close_top=False, folds=Fa
         face.material_index = index
 
 
+def tail_centre(t):
+    """The tail's centre line at `t` (0 at the nape, 1 at its end): (x, y, z) in the figure's space."""
+    t = np.asarray(t, float)
+    radius, depth = section(TAIL_START)
+    heading = np.array([-np.cos(TAIL_SWEEP), np.sin(TAIL_SWEEP)])
+    aside = np.array([heading[1], -heading[0]])  # across the heading, level
+    along = TAIL_LENGTH * t
+    wave = TAIL_WAVE * t * np.sin(2.5 * np.pi * t)
+    x = -(depth * radius + COLLAR[0][1]) + along * heading[0] + wave * aside[0]
+    y = along * heading[1] + wave * aside[1]
+    z = TAIL_START - TAIL_DROP * t ** 1.5 + TAIL_WAVE * t * np.sin(3.0 * np.pi * t + 1.0)
+    return np.stack([x, y, z])
+
+
 def _tail(bm):
-    """The scarf's tail: a strip of rows from the back of the neck (-X) across the back and round to
-    the right side (-Y), three points across."""
+    """The scarf's tail: a ribbon of rows streaming from the nape, its width upright (as a flag's in
+    the wind), three points across."""
+    steps = np.linspace(0.0, 1.0, 16)
+    centres = tail_centre(steps)
+    heading = np.array([-np.cos(TAIL_SWEEP), np.sin(TAIL_SWEEP), 0.0])
     rows = []
-    steps = np.linspace(0.0, 1.0, 12)
     for row, t in enumerate(steps):
-        height = TAIL[0] + (TAIL[1] - TAIL[0]) * t
-        radius, depth = section(height)
-        radius += TAIL_LIFT[0] + (TAIL_LIFT[1] - TAIL_LIFT[0]) * t
         half = (TAIL_WIDTH[0] + (TAIL_WIDTH[1] - TAIL_WIDTH[0]) * t) / 2
-        turn = np.pi - TAIL_TURN * t ** 1.3 + np.array([-half, 0.0, half]) / radius
-        points = _ring_points(height, radius, depth, turn)
+        points = centres[:, row, None] + np.outer([0.0, 0.0, 1.0], [-half, 0.0, half])
         if row == len(steps) - 1:
-            points[2, 1] += 0.06  # the end's middle rises: two points
+            points[:, 1] -= 0.06 * heading  # the end's middle falls back: two points
         rows.append([bm.verts.new(p) for p in points.T])
     for upper, lower in itertools.pairwise(rows):
         for k in range(2):
@@ -151,7 +164,7 @@ def _tail(bm):
 def figure_mesh(scale):
     """A low-poly figure's body standing on its origin facing +X: a folded poncho over the arms,
     broader across than deep, with a golden band at its hem, whose shoulders slope into a peaked
-    hood; a head in the dark wraps; a scarf at the neck with its tail across the back (its legs are
+    hood; a head in the dark wraps; a scarf at the neck with its tail streaming behind (its legs are
     walker_gait's, swinging inside the robe, the shins showing below it). `scale`: scene units per
     metre. Slots: cloak, trim, face."""
     bm = bmesh.new()
