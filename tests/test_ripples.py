@@ -1,6 +1,7 @@
 """Wind ripples against their numpy twin (core/sand.py ripples) by bake, on level ground and on
-slopes, and as an artist sees them: a top-down render whose strongest spatial frequency runs
-along the scene's wind at the ripple wavelength, turning when Add Atmosphere changes the wind.
+slopes, and as an artist sees them: a top-down render whose waves (the spectrum's mean about its
+peak) run along the scene's wind at the ripple wavelength, turning when Add Atmosphere changes
+the wind.
 """
 
 import math
