@@ -99,10 +99,16 @@ def fold_reach(heights):
     return np.clip((SHOULDERS - np.asarray(heights)) / (SHOULDERS - HEM), 0.0, 1.0)
 
 
+def fold_trough(turn):
+    """How far into a fold's trough the cloth is at `turn` (radians round the figure): 0 on a crest
+    (one at the back), 1 in a trough."""
+    return (1.0 - np.cos(FOLDS * turn)) / 2
+
+
 def _ring_points(height, radius, depth, turn, folds=False):
     fall_from, peak = HOOD[-3][0], HOOD[-1][0]  # above the head's top the hood falls back
     fall = HOOD_FALL * max(0.0, (height - fall_from) / (peak - fall_from))
-    trough = (1.0 - np.cos(FOLDS * turn)) / 2 if folds else np.zeros_like(turn)  # crests at the back
+    trough = fold_trough(turn) if folds else np.zeros_like(turn)
     radius = radius * (1.0 - fold_depth(height) * trough)
     lift = HEM_WAVE * trough * (height <= HEM + HEM_BAND + 1e-9)  # the hem and its band rise in a fold
     return np.stack([depth * radius * np.cos(turn) - fall, radius * np.sin(turn), height + lift])
@@ -115,7 +121,7 @@ def _lathe(bm, rings_at, material, close_bottom=False, close_top=False, folds=Fa
     rings = [[bm.verts.new(p) for p in _ring_points(*ring, turn, folds).T] for ring in rings_at]
     if folds:
         for ring, verts in zip(rings_at, rings, strict=True):
-            shade = np.sqrt(fold_reach(ring[0])) * (1.0 - np.cos(FOLDS * turn)) / 2
+            shade = np.sqrt(fold_reach(ring[0])) * fold_trough(turn)
             for vert, value in zip(verts, shade, strict=True):
                 vert[layer] = value
     faces = [bm.faces.new(rings[0][::-1])] if close_bottom else []
@@ -129,11 +135,14 @@ def _lathe(bm, rings_at, material, close_bottom=False, close_top=False, folds=Fa
         face.material_index = index
 
 
+TAIL_HEADING = np.array([-np.cos(TAIL_SWEEP), np.sin(TAIL_SWEEP), 0.0])  # level, behind and left
+
+
 def tail_centre(t):
     """The tail's centre line at `t` (0 at the nape, 1 at its end): (x, y, z) in the figure's space."""
     t = np.asarray(t, float)
     radius, depth = section(TAIL_START)
-    heading = np.array([-np.cos(TAIL_SWEEP), np.sin(TAIL_SWEEP)])
+    heading = TAIL_HEADING
     aside = np.array([heading[1], -heading[0]])  # across the heading, level
     along = TAIL_LENGTH * t
     wave = TAIL_WAVE * t * np.sin(2.5 * np.pi * t)
@@ -148,13 +157,12 @@ def _tail(bm):
     the wind), three points across."""
     steps = np.linspace(0.0, 1.0, 16)
     centres = tail_centre(steps)
-    heading = np.array([-np.cos(TAIL_SWEEP), np.sin(TAIL_SWEEP), 0.0])
     rows = []
     for row, t in enumerate(steps):
         half = (TAIL_WIDTH[0] + (TAIL_WIDTH[1] - TAIL_WIDTH[0]) * t) / 2
         points = centres[:, row, None] + np.outer([0.0, 0.0, 1.0], [-half, 0.0, half])
         if row == len(steps) - 1:
-            points[:, 1] -= 0.06 * heading  # the end's middle falls back: two points
+            points[:, 1] -= 0.06 * TAIL_HEADING  # the end's middle falls back: two points
         rows.append([bm.verts.new(p) for p in points.T])
     for upper, lower in itertools.pairwise(rows):
         for k in range(2):
