@@ -18,13 +18,13 @@ from ..core import sun as sky_sun
 from ..core.clouds import layer_region as holding_region
 from ..node_groups import dust_field, dust_volume
 from ..node_groups import helper as h
-from . import drivers, evaluation, sand, sand_eevee, shot, sky_eevee, units
+from . import drivers, evaluation, sand, sand_eevee, shot, sky_eevee, sky_eevee_haze, units
 from . import ownership as own
 from .sun_lamp import ensure_sun, is_ours, scene_sun  # noqa: F401 (the atmosphere's API)
 
 # Bump when build_sky_nodes changes: a world built by an older version is rebuilt.
 WORLD_NODES_KEY = "sandscape_sky_nodes"
-WORLD_NODES_VERSION = 5
+WORLD_NODES_VERSION = 6
 CLEAR = 0.01  # the haze may end where less than 1 % of the light behind it gets through
 MAX_REACH_M = 20000.0  # thin air would otherwise ask for a box hundreds of kilometres wide
 DEFAULT_WORLD_GREYS = (0.0508761, 0.05)  # a new file's world colour and a new world's, linear
@@ -339,6 +339,13 @@ def apply(scene, settings):
     bounds = shot_bounds(scene, haze_reach(scene, extinction), settings.margin, ground - settings.margin)
     low, high = bounds or (geometry_low - settings.margin, geometry_high + settings.margin)
     box = ensure_volume(scene, coefficients, low, high, dust)
+    # EEVEE's lighting world takes the haze's scattered sunlight (its volumes light no surface).
+    # The wind's dust hugs the ground (metres), so the haze alone: it fills the box.
+    if box is not None and haze > 0:
+        sky_eevee_haze.follow(world, haze, settings.anisotropy, float(high[2] - ground),
+                              float(np.min(high[:2] - low[:2])) / 2)
+    else:
+        sky_eevee_haze.follow(world)
     sand.set_wind(scene, settings.wind)  # one wind for the dust and the sand's ripples
     sand_eevee.follow_scene_sun(scene)
     sky_eevee.follow_sun(world, sun)

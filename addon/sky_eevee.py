@@ -8,7 +8,8 @@ at 65504, far past white at any exposure a sunlit frame takes.
 EEVEE lights diffuse surfaces from the world's first two spherical-harmonic bands, derung, and
 clamped by the scene's Clamp Surface Indirect. Its lighting world is therefore two uniform
 hemispheres (core.atmosphere.eevee_world_hemispheres): above, the sky's irradiance on level
-ground, so level sand gets the sky's light as in Cycles; below, the lit sand's, which lights a
+ground, so level sand gets the sky's light as in Cycles, with the lamp's light the dust box's haze
+scatters down added where it comes from (sky_eevee_haze.py); below, the lit sand's, which lights a
 walker's legs and the undersides of things as the sand's bounce does in Cycles (EEVEE bounces
 none without a baked probe).
 
@@ -25,7 +26,7 @@ from ..core import atmosphere as air
 from ..core import sand as core_sand
 from ..core import sun as sky_sun
 from ..node_groups import helper as h
-from . import compat, drivers
+from . import compat, drivers, sky_eevee_haze
 from . import ownership as own
 from .sun_lamp import SKY_SUN_SIZE
 
@@ -79,9 +80,13 @@ def build(tree, ray, shown):
     h.link(tree, above.outputs[0], hemispheres.inputs["Factor"])
     h.link(tree, below.outputs[0], h.socket(hemispheres.inputs, "A"))
     h.link(tree, sky, h.socket(hemispheres.inputs, "B"))
+    haze = sky_eevee_haze.build(tree, direction.outputs["Generated"], sun_unit, sun_light)
+    with_haze = h.add_node(tree, "ShaderNodeVectorMath", operation="ADD", label="+ Haze Light")
+    h.link(tree, h.socket(hemispheres.outputs, "Result"), with_haze.inputs[0])
+    h.link(tree, haze, with_haze.inputs[1])
     lit = h.add_node(tree, "ShaderNodeBackground", name="Sandscape EEVEE Sky Light",
                      inputs={"Strength": 1 / math.pi})  # irradiance on level ground: radiance x pi
-    h.link(tree, h.socket(hemispheres.outputs, "Result"), lit.inputs["Color"])
+    h.link(tree, with_haze.outputs[0], lit.inputs["Color"])
     seen = _with_disc(tree, direction.outputs["Generated"], sun_unit, sun_light, shown.outputs[0])
     mix = h.add_node(tree, "ShaderNodeMixShader", name="Sandscape EEVEE Camera Sees the Disc")
     h.link(tree, ray.outputs["Is Camera Ray"], mix.inputs["Fac"])
