@@ -45,6 +45,7 @@ def ensure_walker(scene, terrain, start, end, sway=SWAY):
     elif walker.get(walker_figure.FIGURE_SHAPE_KEY) != walker_figure.FIGURE_SHAPE:
         # an older figure's body: this one replaces it, in the materials it wore
         cloth = walker_figure.Cloth(walker)
+        walker_figure.add_fold_shading(cloth[own.CLOAK])  # the new body's folds, shaded as a new cloak's
         walker_gait.swap_mesh(walker, walker_figure.figure_mesh(units.to_units(scene, 1.0)))
         walker_figure.dress(walker, cloth)
     walker[walker_figure.FIGURE_SHAPE_KEY] = walker_figure.FIGURE_SHAPE

@@ -231,6 +231,21 @@ def _shade_folds(tree, shader, colour):
     h.link(tree, h.socket(shade.outputs, "Result"), shader.inputs["Base Color"])
 
 
+def add_fold_shading(material):
+    """A cloak made before its folds were shaded gets the shading, in the colour it has now (its
+    Principled Base Color goes to the Mix node's A); one whose Base Color the artist linked (a
+    texture) is left as it is. Returns True when added."""
+    tree = material.node_tree
+    if tree is None or any(n.bl_idname == "ShaderNodeAttribute" and n.attribute_name == FOLD_ATTRIBUTE
+                           for n in tree.nodes):
+        return False
+    shader = next((n for n in tree.nodes if n.bl_idname == "ShaderNodeBsdfPrincipled"), None)
+    if shader is None or shader.inputs["Base Color"].is_linked:
+        return False
+    _shade_folds(tree, shader, tuple(shader.inputs["Base Color"].default_value))
+    return True
+
+
 class Cloth(dict):
     """{kind: material} for a figure: ours found in the walker's and its limbs' slots; a kind not
     found is made when first asked for (none is made that nothing wears)."""

@@ -328,8 +328,8 @@ def test_add_walker_gives_an_older_walkers_shins_feet(walk):
 def test_add_walker_dresses_an_older_walker_in_the_cloak_it_wore(walk):
     """A walker saved before the scarf (figure and limb shape 3, everything in one cloak the artist
     has recoloured, arms hanging from its shoulders): Add Walker again gives it the new body and
-    legs, keeps that cloak (its colour too), removes the arms the poncho now covers and makes one
-    trim and one wrap, nothing twice."""
+    legs, keeps that cloak (its colour too) and shades its folds, removes the arms the poncho now
+    covers and makes one trim and one wrap, nothing twice."""
     walk.walker = None
     assert bpy.ops.sandscape.add_walker() == {"FINISHED"}
     walker = next(o for o in bpy.data.objects if o.get("sandscape_object") == "walker")
@@ -353,6 +353,12 @@ def test_add_walker_dresses_an_older_walker_in_the_cloak_it_wore(walk):
     for material in [m for m in bpy.data.materials if m.get("sandscape_material") in newer]:
         bpy.data.materials.remove(material)
     cloak.diffuse_color = (0.1, 0.2, 0.6, 1.0)  # the artist's blue
+    tree = cloak.node_tree  # made before the folds were shaded: no Attribute, no Mix
+    principled = next(n for n in tree.nodes if n.bl_idname == "ShaderNodeBsdfPrincipled")
+    for node in [principled.inputs["Base Color"].links[0].from_node,
+                 *(n for n in tree.nodes if n.bl_idname == "ShaderNodeAttribute")]:
+        tree.nodes.remove(node)
+    principled.inputs["Base Color"].default_value = (0.1, 0.2, 0.6, 1.0)
     assert bpy.ops.sandscape.add_walker() == {"FINISHED"}
     kinds = [m.get("sandscape_material") for m in bpy.data.materials]
     assert sorted(k for k in kinds if k in ("cloak", "walker_trim", "walker_wraps")) == [
@@ -360,6 +366,13 @@ def test_add_walker_dresses_an_older_walker_in_the_cloak_it_wore(walk):
     trim, wraps = (next(m for m in bpy.data.materials if m.get("sandscape_material") == k) for k in newer)
     assert list(walker.data.materials) == [cloak, trim, wraps]
     assert tuple(cloak.diffuse_color) == pytest.approx((0.1, 0.2, 0.6, 1.0))
+    # The cloak's folds shaded as a new cloak's, in the artist's colour, once however often it runs.
+    assert bpy.ops.sandscape.add_walker() == {"FINISHED"}
+    mix = principled.inputs["Base Color"].links[0].from_node
+    folds = [n for n in tree.nodes if n.bl_idname == "ShaderNodeAttribute"]
+    assert len(folds) == 1 and folds[0].attribute_name == "sandscape_fold"
+    assert tuple(next(i for i in mix.inputs if i.name == "A" and i.enabled).default_value) == pytest.approx(
+        (0.1, 0.2, 0.6, 1.0))
     assert not [m for m in bpy.data.meshes if m.name.startswith("older ")]
     assert not [name for name in arms if name in bpy.data.objects]
     for limb in limbs:
