@@ -44,12 +44,13 @@ HEM_WAVE = 0.02  # metres the hem rises where a fold goes in
 # (1 in the deepest trough): with the low sun ahead the camera sees the robe's back in shade, lit by
 # the sky alone, where twice as deep folds still did not show.
 FOLD_ATTRIBUTE, FOLD_SHADE = "sandscape_fold", 0.55
-# 8: the scarf's tail streaming behind; 7: the hood shorter over a dark face, the scarf's tail
+# 9: the tail carries a flutter attribute (walker_flutter.py); 8: the scarf's tail streaming
+# behind; 7: the hood shorter over a dark face, the scarf's tail
 # across the back to one side, folds twice as deep, a narrower hem band; 6: a poncho over the arms
 # with sloping shoulders and folds, the hood one smooth taper; 5: the robe down to the shins, the
 # hood's peak tall and pointed; 4: a scarf and a hem band in gold, legs and hands wrapped dark; 3:
 # the robe and a hood (2: the robe under a bare head on a neck; 1: a torso over the hips)
-FIGURE_SHAPE_KEY, FIGURE_SHAPE = "sandscape_figure_shape", 8
+FIGURE_SHAPE_KEY, FIGURE_SHAPE = "sandscape_figure_shape", 9
 HEAD = 0.11  # radius; its top at HEIGHT
 HEAD_FORWARD = 0.035  # metres: the face fills the hood's opening, in the dark wraps (the hood's shadow)
 # Above the robe, as its rings: a hood narrowing in one curve from the shoulders over the head to
@@ -69,6 +70,8 @@ HOOD_FALL = 0.09  # metres the peak falls back
 COLLAR = ((1.45, 0.02), (1.5, 0.016))
 TAIL_START = 1.475  # metres over the soles: the tail leaves the wrap at the nape
 TAIL_LENGTH, TAIL_SWEEP, TAIL_DROP, TAIL_WAVE = 0.85, 0.75, 0.3, 0.06
+# How freely each point of the tail flutters (walker_flutter.py): 0 at the nape, 1 at the end.
+FLUTTER_ATTRIBUTE, FLUTTER_GROWTH = "sandscape_flutter", 1.5
 TAIL_WIDTH = (0.09, 0.06)
 ROBE_SEGMENTS = 32
 CLOAK_SLOT, TRIM_SLOT, FACE_SLOT = 0, 1, 2  # the body's material slots
@@ -157,6 +160,7 @@ def _tail(bm):
     the wind), three points across."""
     steps = np.linspace(0.0, 1.0, 16)
     centres = tail_centre(steps)
+    flutter = bm.verts.layers.float[FLUTTER_ATTRIBUTE]
     rows = []
     for row, t in enumerate(steps):
         half = (TAIL_WIDTH[0] + (TAIL_WIDTH[1] - TAIL_WIDTH[0]) * t) / 2
@@ -164,6 +168,8 @@ def _tail(bm):
         if row == len(steps) - 1:
             points[:, 1] -= 0.06 * TAIL_HEADING  # the end's middle falls back: two points
         rows.append([bm.verts.new(p) for p in points.T])
+        for vert in rows[-1]:
+            vert[flutter] = t ** FLUTTER_GROWTH  # held at the nape, free at the end
     for upper, lower in itertools.pairwise(rows):
         for k in range(2):
             bm.faces.new((upper[k], upper[k + 1], lower[k + 1], lower[k])).material_index = TRIM_SLOT
@@ -176,6 +182,7 @@ def figure_mesh(scale):
     walker_gait's, swinging inside the robe, the shins showing below it). `scale`: scene units per
     metre. Slots: cloak, trim, face."""
     bm = bmesh.new()
+    bm.verts.layers.float.new(FLUTTER_ATTRIBUTE)  # before any vertex (zero off the tail)
     rings = profile()
     bands = [TRIM_SLOT] * ROBE_SEGMENTS + [CLOAK_SLOT] * (ROBE_SEGMENTS * (len(rings) - 2))
     _lathe(bm, rings, [CLOAK_SLOT, *bands, CLOAK_SLOT], close_bottom=True, close_top=True, folds=True)

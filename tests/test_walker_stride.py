@@ -4,6 +4,8 @@ References: the no-slip condition of a pendulum leg (core.gait's amplitude, chec
 difference here) and the prints core.paths plans (their world contacts in the points object).
 """
 
+import math
+
 import bpy
 import numpy as np
 import pytest
@@ -263,3 +265,32 @@ def test_the_cloak_darkens_into_its_folds(sandscape):
     assert mix.blend_type == "MULTIPLY" and attribute.attribute_name == figure.FOLD_ATTRIBUTE
     darkest = np.array(next(i for i in mix.inputs if i.name == "B" and i.enabled).default_value)
     assert darkest[:3] == pytest.approx(1.0 - figure.FOLD_SHADE)
+
+
+def test_the_scarfs_tail_flutters_from_the_nape(sandscape):
+    """The Wave modifier Add Walker gives the body: over one flap (wavelength over speed, in
+    frames) the tail's end sweeps across its face by most of the amplitude, the tail's first row at
+    the nape and everything off the tail stay put (the next row within 2 mm), and a second call
+    changes nothing."""
+    figure, flutter = sandscape.addon.walker_figure, sandscape.addon.walker_flutter
+    walker = bpy.data.objects.new("Figure", figure.figure_mesh(1.0))
+    bpy.context.scene.collection.objects.link(walker)
+    flutter.ensure(walker, 1.0)
+    flutter.ensure(walker, 1.0)
+    assert len(walker.modifiers) == 1 and len(walker.vertex_groups) == 1
+    weights = np.array([d.value for d in walker.data.attributes[figure.FLUTTER_ATTRIBUTE].data])
+    rest = np.array([v.co[:] for v in walker.data.vertices])
+    end, nape, off = weights > 0.99, (weights > 0) & (weights < 0.03), weights == 0  # off: the nape's row too
+    assert end.sum() >= 2 and off.sum() > 0.8 * len(weights)
+    ends = []
+    for frame in range(1, 1 + math.ceil(flutter.WAVELENGTH / flutter.SPEED) + 1):
+        bpy.context.scene.frame_set(frame)
+        evaluated = walker.evaluated_get(bpy.context.evaluated_depsgraph_get())
+        mesh = evaluated.to_mesh()
+        moved = np.array([v.co[:] for v in mesh.vertices]) - rest
+        evaluated.to_mesh_clear()
+        assert np.abs(moved[off]).max() < 1e-6 and np.linalg.norm(moved[nape], axis=1).max() < 2e-3
+        ends.append(np.linalg.norm(moved[end], axis=1).max())
+    print(f"the tail's end moves {min(ends) * 100:.1f}-{max(ends) * 100:.1f} cm over a flap")
+    assert max(ends) - min(ends) > 0.8 * flutter.AMPLITUDE
+    assert max(ends) <= flutter.AMPLITUDE * 1.001
