@@ -59,26 +59,32 @@ def build(tree, direction, to_sun, light):
     return result.outputs[0]
 
 
+def _nodes(world):
+    """{name: node} of the haze's settable nodes in this world, or None (not ours, or older)."""
+    tree = world.node_tree if world is not None else None
+    nodes = {name: own.node(tree, name) for name in NODES}
+    return None if None in nodes.values() else nodes
+
+
 def follow(world, extinction=0.0, anisotropy=0.0, height=0.0, radius=0.0):
     """Set the haze: extinction per scene unit (0: none), its Henyey-Greenstein anisotropy, and
     the box's height over the ground and half-width, in scene units."""
-    tree = world.node_tree if world is not None else None
-    if any(own.node(tree, name) is None for name in NODES):
+    nodes = _nodes(world)
+    if nodes is None:
         return
     g = min(max(float(anisotropy), -0.99), 0.99)
-    own.node(tree, BEND).inputs[1].default_value = -2.0 * g
-    own.node(tree, BEND).inputs[2].default_value = 1.0 + g * g
-    own.node(tree, PHASE).inputs[0].default_value = (1.0 - g * g) / (4.0 * math.pi)
-    own.node(tree, HEIGHT).inputs[0].default_value = max(float(height), 0.0)
-    own.node(tree, RADIUS).inputs[0].default_value = max(float(radius), 0.0)
-    own.node(tree, EXTINCTION).inputs[1].default_value = -max(float(extinction), 0.0)
+    nodes[BEND].inputs[1].default_value = -2.0 * g
+    nodes[BEND].inputs[2].default_value = 1.0 + g * g
+    nodes[PHASE].inputs[0].default_value = (1.0 - g * g) / (4.0 * math.pi)
+    nodes[HEIGHT].inputs[0].default_value = max(float(height), 0.0)
+    nodes[RADIUS].inputs[0].default_value = max(float(radius), 0.0)
+    nodes[EXTINCTION].inputs[1].default_value = -max(float(extinction), 0.0)
 
 
 def held(world):
     """(extinction, anisotropy, height, radius) the world holds, or None."""
-    tree = world.node_tree if world is not None else None
-    if any(own.node(tree, name) is None for name in NODES):
+    nodes = _nodes(world)
+    if nodes is None:
         return None
-    bend = own.node(tree, BEND).inputs[1].default_value
-    return (-own.node(tree, EXTINCTION).inputs[1].default_value, -bend / 2.0,
-            own.node(tree, HEIGHT).inputs[0].default_value, own.node(tree, RADIUS).inputs[0].default_value)
+    return (-nodes[EXTINCTION].inputs[1].default_value, -nodes[BEND].inputs[1].default_value / 2.0,
+            nodes[HEIGHT].inputs[0].default_value, nodes[RADIUS].inputs[0].default_value)
