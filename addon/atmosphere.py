@@ -18,7 +18,7 @@ from ..core import sun as sky_sun
 from ..core.clouds import layer_region as holding_region
 from ..node_groups import dust_field, dust_volume
 from ..node_groups import helper as h
-from . import drivers, evaluation, sand, sand_eevee, shot, sky_eevee, sky_eevee_haze, units
+from . import drivers, evaluation, sand, sand_eevee, shot, sky_eevee, sky_eevee_haze, units, walker_wind
 from . import ownership as own
 from .sun_lamp import ensure_sun, is_ours, scene_sun  # noqa: F401 (the atmosphere's API)
 
@@ -347,6 +347,7 @@ def apply(scene, settings):
     else:
         sky_eevee_haze.follow(world)
     sand.set_wind(scene, settings.wind)  # one wind for the dust and the sand's ripples
+    walker_wind.set_wind(scene, settings.wind)  # and for the walker's scarf
     sand_eevee.follow_scene_sun(scene)
     sky_eevee.follow_sun(world, sun)
     sky_eevee.follow_clamp(world, scene)

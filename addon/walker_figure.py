@@ -14,6 +14,7 @@ import bpy
 import numpy as np
 from mathutils import Matrix
 
+from ..core import scarf
 from ..node_groups import helper as h
 from . import ownership as own
 from . import walker_gait
@@ -71,7 +72,7 @@ COLLAR = ((1.45, 0.02), (1.5, 0.016))
 TAIL_START = 1.475  # metres over the soles: the tail leaves the wrap at the nape
 TAIL_LENGTH, TAIL_SWEEP, TAIL_DROP, TAIL_WAVE = 0.85, 0.75, 0.3, 0.06
 # How freely each point of the tail flutters (walker_flutter.py): 0 at the nape, 1 at the end.
-FLUTTER_ATTRIBUTE, FLUTTER_GROWTH = "sandscape_flutter", 1.5
+FLUTTER_ATTRIBUTE, FLUTTER_GROWTH = scarf.FLUTTER_ATTRIBUTE, scarf.FLUTTER_GROWTH
 TAIL_WIDTH = (0.09, 0.06)
 ROBE_SEGMENTS = 32
 CLOAK_SLOT, TRIM_SLOT, FACE_SLOT = 0, 1, 2  # the body's material slots
