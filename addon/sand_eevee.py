@@ -24,8 +24,15 @@ DOWN, UP = "Sandscape EEVEE Dimmer", "Sandscape EEVEE Brighter"
 DOWN_HELD, UP_HELD = "Sandscape EEVEE Dimmer ≥ 0", "Sandscape EEVEE Brighter ≥ 0"
 FRAME = "Sandscape EEVEE Frame"
 JOURNEY_SURFACE = "Sandscape EEVEE Journey Surface"
+# The sun's light alone on a white Lambert surface here (shadow and all): EEVEE's lighting of a
+# diffuse at the normal, less its lighting at the normal turned square to the sun (no sunlight,
+# nearly the same sky and haze).
+SUN_LIGHT_PREFIX, BOOST_LIGHT = "Sandscape EEVEE Sun Light ", "Sandscape EEVEE Boost Light"
+SUN_LIGHT = tuple(f"{SUN_LIGHT_PREFIX}{part}" for part in (
+    "Geometry", "Sun", "N·L", "Along Sun", "Off Sun", "Square to Sun", "Lit", "Unlit", "Lit RGB", "Unlit RGB",
+    "Difference", "Held"))
 NODES = (OUTPUT, BALANCE, SUN, SCALE, BOOST, BOOST_COLOR, BOTH, DOWN, UP, DOWN_HELD, UP_HELD, FRAME,
-         JOURNEY_SURFACE)
+         JOURNEY_SURFACE, BOOST_LIGHT) + SUN_LIGHT
 
 
 def attach(material, scene, look_node, look, glint=None):
@@ -42,8 +49,10 @@ def attach(material, scene, look_node, look, glint=None):
         _remove(tree)
         cycles.target = "ALL"
         return
-    if own.node(tree, OUTPUT) is not None and (own.node(tree, JOURNEY_SURFACE) is None) == journey:
-        _remove(tree)  # built for the other look
+    boost = own.node(tree, BOOST)
+    if own.node(tree, OUTPUT) is not None and ((own.node(tree, JOURNEY_SURFACE) is None) == journey or (
+            boost is not None and boost.type != "EMISSION")):
+        _remove(tree)  # built for the other look, or boosting the sky's light too (before 2026-11-29)
     if journey:
         _ensure_journey_nodes(tree, look_node, glint)
     else:
@@ -165,15 +174,53 @@ def _ensure_nodes(tree, look_node):
     color = h.add_node(tree, "ShaderNodeVectorMath", name=BOOST_COLOR, label="Sand Colour × (Balance − 1)",
                        operation="SCALE")
     h.link(tree, extra.outputs[0], color.inputs["Scale"])
-    boost = h.add_node(tree, "ShaderNodeBsdfDiffuse", name=BOOST, label="Brighter, as Cycles")
-    h.link(tree, color.outputs[0], boost.inputs["Color"])
-    if normal:
-        h.link(tree, normal[0].from_socket, boost.inputs["Normal"])
+    # The balance corrects the sun's light (it was fitted to it): the sky's and the haze's, which
+    # reach the shade too, are not brightened with it.
+    lit, lit_nodes = _sun_light(tree, normal[0].from_socket if normal else None, sun.outputs[0])
+    light = h.vector_math(tree, "MULTIPLY", color.outputs[0], lit, label="× the Sun's Light")
+    boost = h.add_node(tree, "ShaderNodeEmission", name=BOOST, label="Brighter, as Cycles (the sun's light)",
+                       inputs={"Strength": 1.0})
+    h.link(tree, light.outputs[0], boost.inputs["Color"])
+    light.name = BOOST_LIGHT
     both = h.add_node(tree, "ShaderNodeAddShader", name=BOTH)
     h.link(tree, scale.outputs[0], both.inputs[0])
     h.link(tree, boost.outputs[0], both.inputs[1])
     h.link(tree, both.outputs[0], output.inputs["Surface"])
     frame = h.frame(tree, "EEVEE: Balanced to Cycles", (sun, balance, down, clamped, scale, up, extra, color,
-                                                         boost, both, output))
+                                                         *lit_nodes, light, boost, both, output))
     frame.name = FRAME
     return output
+
+
+def _sun_light(tree, normal, sun):
+    """The sun's light on a white Lambert surface at the shading normal (`normal`, None: the
+    geometry's), shadowed as EEVEE shadows it: Shader to RGB of a diffuse there, less that of a
+    diffuse whose normal is turned square to the sun (N - (N·L) L: no sunlight, nearly the same
+    ambient light). Returns (the colour socket, the nodes made)."""
+    made = []
+
+    def named(node, part):
+        node.name = f"{SUN_LIGHT_PREFIX}{part}"
+        made.append(node)
+        return node
+
+    if normal is None:
+        normal = named(h.add_node(tree, "ShaderNodeNewGeometry"), "Geometry").outputs["Normal"]
+    to_sun = named(h.vector_math(tree, "NORMALIZE", sun, label="Sun"), "Sun").outputs[0]
+    cosine = named(h.vector_math(tree, "DOT_PRODUCT", normal, to_sun, label="N·L"), "N·L")
+    along = named(h.vector_math(tree, "SCALE", to_sun, label="(N·L) L"), "Along Sun")
+    h.link(tree, cosine.outputs["Value"], along.inputs["Scale"])
+    off = named(h.vector_math(tree, "SUBTRACT", normal, along.outputs[0], label="N − (N·L) L"), "Off Sun")
+    square = named(h.vector_math(tree, "NORMALIZE", off.outputs[0], label="Square to the Sun"),
+                   "Square to Sun")
+    colours = []
+    for part, facing in (("Lit", normal), ("Unlit", square.outputs[0])):
+        diffuse = named(h.add_node(tree, "ShaderNodeBsdfDiffuse", label=f"White Diffuse ({part})",
+                                   inputs={"Color": (1.0, 1.0, 1.0, 1.0)}), part)
+        h.link(tree, facing, diffuse.inputs["Normal"])
+        rgb = named(h.add_node(tree, "ShaderNodeShaderToRGB", label=f"{part} Light"), f"{part} RGB")
+        h.link(tree, diffuse.outputs[0], rgb.inputs["Shader"])
+        colours.append(rgb.outputs["Color"])
+    difference = named(h.vector_math(tree, "SUBTRACT", *colours, label="The Sun's Light"), "Difference")
+    held = named(h.vector_math(tree, "MAXIMUM", difference.outputs[0], (0.0, 0.0, 0.0), label="≥ 0"), "Held")
+    return held.outputs[0], made

@@ -5,10 +5,10 @@ EEVEE has neither Cycles' rough (Oren-Nayar) diffuse nor its microfiber sheen: i
 Lambert and its sheen is lit like a diffuse. Under a low sun Cycles' sand is up to 3.7x brighter
 seen with the sun behind (back-scatter at grazing angles), and under a high sun EEVEE's is
 brighter. With C = Cycles' brightness over EEVEE's, the balance G is C where C < 1 (the EEVEE
-output scales its surface by it) and 1 + (C − 1) E / D above (it adds G − 1 of a Lambert diffuse
-of the sand's colour, whose own brightness D is below the sand's E). C, E and D were measured on
-a flat plane of the sand under our sun and sky (devtools/eevee_balance_data.py) and G fitted
-here as exp(polynomial) in
+output scales its surface by it) and 1 + (C − 1) E / D above (it adds G − 1 of the sun's light
+on a Lambert diffuse of the sand's colour, D, below the sand's E: the sky's light is left as it
+is). C and E were measured on a flat plane of the sand under our sun and sky, D under the sun
+alone (devtools/eevee_balance_data.py), and G fitted here as exp(polynomial) in
 
     v = N·V, l = N·L (each at least MIN_COSINE) and a = cos of the azimuth between V and L
     about N (a = 1: the sun in front of the camera; -1: behind it).
@@ -24,14 +24,18 @@ import numpy as np
 MIN_COSINE = 0.05
 # The balance corrects the sun's light: on faces turned from the sun (N·L at most 0) there is none
 # to correct, and it eases from the fit to 1 as N·L falls from MIN_COSINE to 0.
-BALANCE_RANGE = (0.5, 5.0)  # the fitted balance is held inside what the measurements spanned
-DEGREE = 3
+BALANCE_RANGE = (0.5, 6.5)  # the fitted balance is held inside what the measurements spanned
+DEGREE = 4
 # exp(sum c v^i l^j a^k) over the terms (i, j, k), total degree at most DEGREE.
-TERMS = tuple(t for t in itertools.product(range(DEGREE + 1), repeat=3) if sum(t) <= DEGREE)
+# The measured azimuths are 0, 90 and 180 degrees (a = 1, 0, -1), where a^3 = a: a's powers stop at 2.
+AZIMUTH_POWERS = 2
+TERMS = tuple(t for t in itertools.product(range(DEGREE + 1), repeat=3)
+              if sum(t) <= DEGREE and t[2] <= AZIMUTH_POWERS)
 # Fitted to devtools/eevee_balance.json (devtools/eevee_balance_data.py, Blender 5.2.3), under the
-# EEVEE world's two hemispheres (addon/sky_eevee.py).
-COEFFICIENTS = (1.476, -0.0089, 0.5696, -0.0089, -3.32, -1.0063, -0.444, 0.3194, 0.9914, 0.875,
-                -3.2935, -0.5392, -0.3292, 7.0994, -0.0121, -2.2565, 0.9783, 0.666, -2.1906, 0.3124)
+# EEVEE world's two hemispheres (addon/sky_eevee.py), for a boost that adds the sun's light alone.
+COEFFICIENTS = (1.7328, 0.0126, 0.9607, -3.6286, -0.9463, -1.1328, -3.0546, 0.3508, 0.1306, 7.3925, 0.5289,
+                -2.9587, -4.2059, -1.1353, -0.98, 13.9736, 1.6411, 1.0064, -7.661, -0.6189, -0.5374, -0.6202,
+                0.8074, 0.0311, -8.5741, -0.9342, 5.2906, 5.0561, 0.3335, -0.0574, -2.286)
 
 
 def _unit(vector):

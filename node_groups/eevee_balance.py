@@ -9,7 +9,7 @@ from ..core import eevee_balance as twin
 from . import helper as h
 
 NAME = "Sandscape EEVEE Balance"
-VERSION = 5
+VERSION = 6
 TREE_TYPE = "ShaderNodeTree"
 DESCRIPTION = ("Cycles' brightness of Sandscape sand over EEVEE's at this view, sun and normal: the "
                "factor the sand's EEVEE output applies")

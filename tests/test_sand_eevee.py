@@ -76,3 +76,25 @@ def test_the_balance_follows_the_sun_and_the_prints_reach_eevee(sandscape):
     assert source(cycles.inputs["Displacement"]) is not None
     assert source(eevee.inputs["Displacement"]) == source(cycles.inputs["Displacement"])
     assert source(tree.nodes["Sandscape EEVEE Scale"].inputs[1]) == source(cycles.inputs["Surface"])
+
+
+def test_an_older_balance_boosting_the_sky_too_is_rebuilt(sandscape):
+    """A material made before the boost took the sun's light alone (a Lambert diffuse named as the
+    boost): the next Add Sand Material builds the EEVEE nodes anew, the same nodes as a new one's."""
+    sand_eevee = sandscape.addon.sand_eevee
+    plane = readback.uv_plane()
+    assert bpy.ops.sandscape.add_sand_material() == {"FINISHED"}
+    tree = plane.active_material.node_tree
+    fresh = sorted(node.name for node in tree.nodes)
+    boost = tree.nodes[sand_eevee.BOOST]
+    assert boost.bl_idname == "ShaderNodeEmission"
+    for name in sand_eevee.SUN_LIGHT + (sand_eevee.BOOST_LIGHT, sand_eevee.BOOST):
+        if name in tree.nodes:  # the geometry's normal only where the look's is unlinked
+            tree.nodes.remove(tree.nodes[name])
+    old = tree.nodes.new("ShaderNodeBsdfDiffuse")
+    old.name = sand_eevee.BOOST
+    tree.links.new(old.outputs[0], tree.nodes[sand_eevee.BOTH].inputs[1])
+    assert bpy.ops.sandscape.add_sand_material() == {"FINISHED"}
+    assert sorted(node.name for node in tree.nodes) == fresh
+    assert tree.nodes[sand_eevee.BOOST].bl_idname == "ShaderNodeEmission"
+    assert source(tree.nodes[sand_eevee.BOTH].inputs[1]).node == tree.nodes[sand_eevee.BOOST]
