@@ -10,9 +10,11 @@ untouched. The Journey look's EEVEE output is its own EEVEE Shader (its contrast
 diffuse, the driven sun undoing Lambert's cosine) with the glints on top.
 """
 
+import math
+
 from ..node_groups import eevee_balance
 from ..node_groups import helper as h
-from . import drivers
+from . import drivers, sky_eevee
 from . import ownership as own
 from .sun_lamp import scene_sun
 
@@ -31,8 +33,14 @@ SUN_LIGHT_PREFIX, BOOST_LIGHT = "Sandscape EEVEE Sun Light ", "Sandscape EEVEE B
 SUN_LIGHT = tuple(f"{SUN_LIGHT_PREFIX}{part}" for part in (
     "Geometry", "Sun", "N·L", "Along Sun", "Off Sun", "Square to Sun", "Lit", "Unlit", "Lit RGB", "Unlit RGB",
     "Difference", "Held"))
+# How much of the sun's light arrives (EEVEE's shadow): the sun's light here over the lamp's
+# unshadowed light at this normal; lit glints blend in by it.
+SUN_IRRADIANCE, GLINTS_WHERE_LIT = "Sandscape EEVEE Sun Irradiance", "Sandscape EEVEE Glints Where Lit"
+SUN_REACH = tuple(f"Sandscape EEVEE Sun Reach {part}" for part in (
+    "Lamp Total", "Lit Total", "Cosine", "Lamp at Normal", "Over Pi", "Held", "Share"))
 NODES = (OUTPUT, BALANCE, SUN, SCALE, BOOST, BOOST_COLOR, BOTH, DOWN, UP, DOWN_HELD, UP_HELD, FRAME,
-         JOURNEY_SURFACE, BOOST_LIGHT) + SUN_LIGHT
+         JOURNEY_SURFACE, BOOST_LIGHT, SUN_IRRADIANCE, GLINTS_WHERE_LIT) + SUN_LIGHT + SUN_REACH
+REACH_MIN_COSINE = 0.02  # below it the sun's light and the lamp's are both near 0: held
 
 
 def attach(material, scene, look_node, look, glint=None):
@@ -49,10 +57,10 @@ def attach(material, scene, look_node, look, glint=None):
         _remove(tree)
         cycles.target = "ALL"
         return
-    boost = own.node(tree, BOOST)
-    if own.node(tree, OUTPUT) is not None and ((own.node(tree, JOURNEY_SURFACE) is None) == journey or (
-            boost is not None and boost.type != "EMISSION")):
-        _remove(tree)  # built for the other look, or boosting the sky's light too (before 2026-11-29)
+    older = not journey and own.node(tree, GLINTS_WHERE_LIT) is None  # before 2026-11-29: the boost a
+    # diffuse (it brightened the sky's light too), lit glints in the shade
+    if own.node(tree, OUTPUT) is not None and ((own.node(tree, JOURNEY_SURFACE) is None) == journey or older):
+        _remove(tree)  # built for the other look, or an older build
     if journey:
         _ensure_journey_nodes(tree, look_node, glint)
     else:
@@ -81,8 +89,17 @@ def sync(tree):
     if cycles is None or output is None:
         return
     scale = own.node(tree, SCALE)  # none for Journey: its EEVEE surface is its own
-    for name, target in ((("Surface", scale.inputs[1]),) if scale is not None else ()) + \
-            (("Displacement", output.inputs["Displacement"]),):
+    where_lit = own.node(tree, GLINTS_WHERE_LIT)
+    surface = cycles.inputs["Surface"].links
+    base = _glint_base(surface[0].from_socket) if surface else None
+    targets = (("Displacement", output.inputs["Displacement"]),)
+    if scale is not None and where_lit is not None and base is not None:  # lit glints where the sun reaches
+        h.link(tree, base, where_lit.inputs[1])
+        h.link(tree, surface[0].from_socket, where_lit.inputs[2])
+        h.link(tree, where_lit.outputs[0], scale.inputs[1])
+    elif scale is not None:
+        targets += (("Surface", scale.inputs[1]),)
+    for name, target in targets:
         links = cycles.inputs[name].links
         if links:
             h.link(tree, links[0].from_socket, target)
@@ -91,12 +108,32 @@ def sync(tree):
                 tree.links.remove(link)
 
 
+def _glint_base(socket):
+    """The sand under the lit glints when `socket` is their group's surface (its Base's source)."""
+    node = socket.node
+    if node.bl_idname == "ShaderNodeGroup" and "Facets" in node.outputs and "Base" in node.inputs \
+            and node.inputs["Base"].links:
+        return node.inputs["Base"].links[0].from_socket
+    return None
+
+
 def follow_sun(material, scene):
     """Drive the balance's sun from the scene's sun lamp (none: no balance)."""
     sun_node = own.node(material.node_tree, SUN)
     if sun_node is None:
         return
-    drivers.follow_lamp_axis(sun_node.inputs[:3], scene_sun(scene))
+    sun = scene_sun(scene)
+    drivers.follow_lamp_axis(sun_node.inputs[:3], sun)
+    irradiance = own.node(material.node_tree, SUN_IRRADIANCE)
+    for index, socket in enumerate(irradiance.inputs[:3] if irradiance is not None else ()):
+        if sun is None:
+            socket.driver_remove("default_value")
+            socket.default_value = 0.0
+        else:
+            drivers.drive(socket, "default_value", sky_eevee.LIGHT_EXPRESSION,
+                          [("energy", "OBJECT", sun, "data.energy"),
+                           ("tint", "OBJECT", sun, f"data.color[{index}]"),
+                           ("hidden", "OBJECT", sun, "hide_render")])
 
 
 def follows_scene_sun(material, scene):
@@ -182,12 +219,20 @@ def _ensure_nodes(tree, look_node):
                        inputs={"Strength": 1.0})
     h.link(tree, light.outputs[0], boost.inputs["Color"])
     light.name = BOOST_LIGHT
+    # Lit glints where the sun reaches: EEVEE's world light has no shadow, so facets in the shade
+    # mirrored the bright sky round the sun, which Cycles' dunes hide (sync() links the mix).
+    reach, reach_nodes = _sun_reach(tree, lit, tree.nodes[f"{SUN_LIGHT_PREFIX}N·L"].outputs["Value"])
+    where_lit = h.add_node(tree, "ShaderNodeMixShader", name=GLINTS_WHERE_LIT,
+                           label="Glints Where the Sun Reaches")
+    h.link(tree, reach, where_lit.inputs["Fac"])
+    h.link(tree, where_lit.outputs[0], scale.inputs[1])
     both = h.add_node(tree, "ShaderNodeAddShader", name=BOTH)
     h.link(tree, scale.outputs[0], both.inputs[0])
     h.link(tree, boost.outputs[0], both.inputs[1])
     h.link(tree, both.outputs[0], output.inputs["Surface"])
     frame = h.frame(tree, "EEVEE: Balanced to Cycles", (sun, balance, down, clamped, scale, up, extra, color,
-                                                         *lit_nodes, light, boost, both, output))
+                                                         *lit_nodes, light, boost, *reach_nodes, where_lit,
+                                                         both, output))
     frame.name = FRAME
     return output
 
@@ -224,3 +269,26 @@ def _sun_light(tree, normal, sun):
     difference = named(h.vector_math(tree, "SUBTRACT", *colours, label="The Sun's Light"), "Difference")
     held = named(h.vector_math(tree, "MAXIMUM", difference.outputs[0], (0.0, 0.0, 0.0), label="≥ 0"), "Held")
     return held.outputs[0], made
+
+
+def _sun_reach(tree, lit, cosine):
+    """The share of the lamp's light that reaches here (0 in EEVEE's shadow, 1 in full sun): the
+    sun's light on a white Lambert surface (`lit`) over the lamp's unshadowed light at the normal,
+    E max(N·L, REACH_MIN_COSINE) / pi, summed over the channels. Returns (the socket, the nodes)."""
+    irradiance = h.add_node(tree, "ShaderNodeCombineXYZ", name=SUN_IRRADIANCE,
+                            label="Sun Irradiance (driven)")
+    parts = iter(SUN_REACH)
+
+    def named(node):
+        node.name = next(parts)
+        return node
+
+    lamp = named(h.vector_math(tree, "DOT_PRODUCT", irradiance.outputs[0], (1.0, 1.0, 1.0), label="Lamp"))
+    arrived = named(h.vector_math(tree, "DOT_PRODUCT", lit, (1.0, 1.0, 1.0), label="Sun's Light"))
+    held = named(h.math(tree, "MAXIMUM", cosine, REACH_MIN_COSINE, label="N·L ≥ Limit"))
+    at_normal = named(h.math(tree, "MULTIPLY", lamp.outputs["Value"], held.outputs[0], label="Lamp at N"))
+    lambert = named(h.math(tree, "MULTIPLY", at_normal.outputs[0], 1.0 / math.pi, label="÷ π"))
+    floor = named(h.math(tree, "MAXIMUM", lambert.outputs[0], 1e-9, label="> 0"))
+    share = named(h.math(tree, "DIVIDE", arrived.outputs["Value"], floor.outputs[0], label="Sun Reaches"))
+    share.use_clamp = True
+    return share.outputs[0], (irradiance, lamp, arrived, held, at_normal, lambert, floor, share)

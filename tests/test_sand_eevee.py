@@ -75,12 +75,17 @@ def test_the_balance_follows_the_sun_and_the_prints_reach_eevee(sandscape):
     cycles, eevee = tree.nodes["Sandscape Output"], tree.nodes["Sandscape EEVEE Output"]
     assert source(cycles.inputs["Displacement"]) is not None
     assert source(eevee.inputs["Displacement"]) == source(cycles.inputs["Displacement"])
-    assert source(tree.nodes["Sandscape EEVEE Scale"].inputs[1]) == source(cycles.inputs["Surface"])
+    # EEVEE's surface: the lit glints' sand blended with the sand under them by the sun's reach
+    where_lit = tree.nodes["Sandscape EEVEE Glints Where Lit"]
+    assert source(tree.nodes["Sandscape EEVEE Scale"].inputs[1]) == where_lit.outputs[0]
+    assert source(where_lit.inputs[2]) == source(cycles.inputs["Surface"])
+    assert source(where_lit.inputs[1]) == source(source(cycles.inputs["Surface"]).node.inputs["Base"])
 
 
 def test_an_older_balance_boosting_the_sky_too_is_rebuilt(sandscape):
     """A material made before the boost took the sun's light alone (a Lambert diffuse named as the
-    boost): the next Add Sand Material builds the EEVEE nodes anew, the same nodes as a new one's."""
+    boost) and before lit glints kept to the sun: the next Add Sand Material builds the EEVEE nodes
+    anew, the same nodes as a new one's."""
     sand_eevee = sandscape.addon.sand_eevee
     plane = readback.uv_plane()
     assert bpy.ops.sandscape.add_sand_material() == {"FINISHED"}
@@ -88,12 +93,16 @@ def test_an_older_balance_boosting_the_sky_too_is_rebuilt(sandscape):
     fresh = sorted(node.name for node in tree.nodes)
     boost = tree.nodes[sand_eevee.BOOST]
     assert boost.bl_idname == "ShaderNodeEmission"
-    for name in sand_eevee.SUN_LIGHT + (sand_eevee.BOOST_LIGHT, sand_eevee.BOOST):
+    older = sand_eevee.SUN_LIGHT + sand_eevee.SUN_REACH + (
+        sand_eevee.BOOST_LIGHT, sand_eevee.BOOST, sand_eevee.SUN_IRRADIANCE, sand_eevee.GLINTS_WHERE_LIT)
+    for name in older:
         if name in tree.nodes:  # the geometry's normal only where the look's is unlinked
             tree.nodes.remove(tree.nodes[name])
     old = tree.nodes.new("ShaderNodeBsdfDiffuse")
     old.name = sand_eevee.BOOST
     tree.links.new(old.outputs[0], tree.nodes[sand_eevee.BOTH].inputs[1])
+    surface = source(tree.nodes[sand_eevee.CYCLES_OUTPUT].inputs["Surface"])
+    tree.links.new(surface, tree.nodes[sand_eevee.SCALE].inputs[1])
     assert bpy.ops.sandscape.add_sand_material() == {"FINISHED"}
     assert sorted(node.name for node in tree.nodes) == fresh
     assert tree.nodes[sand_eevee.BOOST].bl_idname == "ShaderNodeEmission"
