@@ -118,7 +118,8 @@ def _glint_base(socket):
 
 
 def follow_sun(material, scene):
-    """Drive the balance's sun from the scene's sun lamp (none: no balance)."""
+    """Drive the balance's sun and the lamp's light the glints' reach is measured against from the
+    scene's sun lamp (none: no balance, no lit glints)."""
     sun_node = own.node(material.node_tree, SUN)
     if sun_node is None:
         return

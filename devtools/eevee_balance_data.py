@@ -32,7 +32,11 @@ AZIMUTHS = (0, 90, 180)  # the camera's heading from the sun's: 0 looks towards 
 PLAIN_OFFSET = 5000.0
 
 
-def measure():
+def _calibration_scene():
+    """A session with the measurements' scene: the sand plane (no ripples, its EEVEE output taken
+    away: what the balance corrects), Add Atmosphere's settings without haze or dust, the long-lens
+    camera, and far off a plane of EEVEE's Lambert diffuse in the sand's colour (switching
+    materials would recompile EEVEE's shaders). Returns (bpy, readback, the scene, the camera)."""
     from devtools import session
 
     root = session.isolate()
@@ -53,20 +57,24 @@ def measure():
     camera.data.clip_end = 1e4
     bpy.context.view_layer.objects.active = ground
     assert bpy.ops.sandscape.add_sand_material(ripples=False) == {"FINISHED"}
-    material = ground.active_material  # measured without its EEVEE output: what the balance corrects
+    material = ground.active_material
     sandscape.addon.sand_eevee.attach(material, scene, sandscape.addon.sand.look_node(material), None)
     readback.cycles_scene(scene, (24, 12), 64)
     scene.eevee.taa_render_samples = 16
-    # EEVEE's Lambert diffuse of the sand's colour alone (what the EEVEE output's boost adds per
-    # unit), on a second plane far off: switching materials would recompile EEVEE's shaders.
     plain = bpy.data.materials.new("Plain Diffuse")
     plain.node_tree.nodes.clear()
     bsdf = plain.node_tree.nodes.new("ShaderNodeBsdfDiffuse")
-    bsdf.inputs["Color"].default_value = sandscape_look_colour(ground.active_material)
+    bsdf.inputs["Color"].default_value = sandscape_look_colour(material)
     out = plain.node_tree.nodes.new("ShaderNodeOutputMaterial")
     plain.node_tree.links.new(bsdf.outputs[0], out.inputs["Surface"])
     bpy.ops.mesh.primitive_plane_add(size=2000, location=(PLAIN_OFFSET, 0.0, 0.0))
     bpy.context.active_object.data.materials.append(plain)
+    return bpy, readback, scene, camera
+
+
+def measure():
+    bpy, readback, scene, camera = _calibration_scene()
+    settings = scene.sandscape_atmosphere
     rows = []
     for sun in SUN_ELEVATIONS:
         settings.sun_elevation = math.radians(sun)
@@ -108,35 +116,8 @@ def _sun_light_rows(bpy, scene, camera, rows):
 
 def add_sun_light(rows):
     """Measure the sun-only Lambert plane for rows recorded without it (the same scene rebuilt)."""
-    from devtools import session
-
-    root = session.isolate()
-    import bpy
-
-    from devtools import readback, scenes
-
-    session.install_dev_extension(root)
-    session.reset()
-    scene = bpy.context.scene
+    bpy, readback, scene, camera = _calibration_scene()
     settings = scene.sandscape_atmosphere
-    settings.density = settings.dust_density = 0.0
-    settings.use_haze = settings.set_exposure = False
-    settings.sun_azimuth = 0.0
-    camera = scenes.camera("PERSP", location=(0, 0, 1.6), lens=300)
-    camera.data.clip_end = 1e4
-    bpy.ops.mesh.primitive_plane_add(size=2000)
-    assert bpy.ops.sandscape.add_sand_material(ripples=False) == {"FINISHED"}
-    colour = sandscape_look_colour(bpy.context.active_object.active_material)
-    plain = bpy.data.materials.new("Plain Diffuse")
-    plain.node_tree.nodes.clear()
-    bsdf = plain.node_tree.nodes.new("ShaderNodeBsdfDiffuse")
-    bsdf.inputs["Color"].default_value = colour
-    out = plain.node_tree.nodes.new("ShaderNodeOutputMaterial")
-    plain.node_tree.links.new(bsdf.outputs[0], out.inputs["Surface"])
-    bpy.ops.mesh.primitive_plane_add(size=2000, location=(PLAIN_OFFSET, 0.0, 0.0))
-    bpy.context.active_object.data.materials.append(plain)
-    readback.cycles_scene(scene, (24, 12), 64)
-    scene.eevee.taa_render_samples = 16
     for sun in sorted({row["sun"] for row in rows}):
         settings.sun_elevation = math.radians(sun)
         assert bpy.ops.sandscape.add_atmosphere() == {"FINISHED"}
