@@ -4,9 +4,11 @@ The tail is built streaming along one heading in the walker's own space; as the 
 wind it feels stays put. Each frame the tail turns about the upright axis through the nape to the
 heading of the wind the walker feels (the scene's wind less its own walking velocity), reflected
 to the walker's back half: a ribbon tied at the nape streams behind or to the side, never through
-the body ahead of it (a wind from straight behind lets it hang back). Its root turns least: the
-turn grows from none at the nape to all of it ROOT_SHARE along the tail. Under CALM_SPEED the
-turn fades (a still scarf keeps the heading it was built with).
+the body ahead of it. The more that wind blows forward (a wind from behind outrunning the walk),
+the nearer the tail hangs straight back: reflected alone, it whipped from one shoulder to the
+other, 20 degrees a frame, as a weaving walker turned across such a wind. Its root turns least:
+the turn grows from none at the nape to all of it ROOT_SHARE along the tail. Under CALM_SPEED it
+eases to straight back too.
 """
 
 import numpy as np
@@ -14,22 +16,25 @@ import numpy as np
 FLUTTER_ATTRIBUTE = "sandscape_flutter"  # on the figure's points: t^FLUTTER_GROWTH along the tail, 0 off it
 FLUTTER_GROWTH = 1.5  # held at the nape, free at the end
 ROOT_SHARE = 0.25  # of the tail's length: where the turn reaches its full angle
-CALM_SPEED = 0.5  # metres a second of felt wind at which the tail takes the wind's full heading
+CALM_SPEED = 1.5  # metres a second of felt wind (a light breeze) at which the tail takes its full heading
 
 
 def felt_heading(felt_xy):
     """The tail's heading (radians from the walker's forward +X toward its left +Y) for the wind
-    it feels, `felt_xy` in its own space: the wind's heading reflected into the back half."""
+    it feels, `felt_xy` in its own space: the wind's heading reflected into the back half, its
+    swing from straight back shrunk by the share the wind blows forward (1 - max(cos, 0))."""
     felt_xy = np.asarray(felt_xy, float)
-    behind = np.arctan2(felt_xy[..., 1], felt_xy[..., 0]) - np.pi
-    return np.pi + np.arcsin(np.clip(np.sin(behind), -1.0, 1.0))
+    heading = np.arctan2(felt_xy[..., 1], felt_xy[..., 0])
+    aside = np.arcsin(np.clip(np.sin(heading - np.pi), -1.0, 1.0))
+    return np.pi + aside * (1.0 - np.maximum(np.cos(heading), 0.0))
 
 
 def turn_angle(felt_xy, built_heading, felt_speed, calm_speed):
     """How far the whole tail turns (radians, counter-clockwise seen from above): from its built
-    heading to the felt wind's, faded out below `calm_speed` (the same units as `felt_speed`)."""
+    heading to the felt wind's, which eases to straight back below `calm_speed` (the same units
+    as `felt_speed`)."""
     fade = np.clip(np.asarray(felt_speed, float) / calm_speed, 0.0, 1.0)
-    return (felt_heading(felt_xy) - built_heading) * fade
+    return np.pi + (felt_heading(felt_xy) - np.pi) * fade - built_heading
 
 
 def root_weight(flutter):

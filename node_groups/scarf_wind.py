@@ -4,7 +4,8 @@ A geometry-nodes modifier on the walker's body: it reads the object's own world 
 Object), so the tail follows the walker's turns along any path with no keys and no Python on a
 farm. The felt wind is the scene's wind less the walk (Walk Speed along the object's +X), taken
 into the object's space; the tail turns about the upright axis through the Nape to that wind's
-heading reflected into the walker's back half, its root least. Points are picked and weighted by
+heading reflected into the walker's back half (the nearer straight back the more that wind blows
+forward), its root least. Points are picked and weighted by
 the figure's flutter attribute. Twin: core.scarf.
 """
 
@@ -14,7 +15,7 @@ from ..core import scarf
 from . import helper as h
 
 NAME = "Sandscape Scarf Wind"
-VERSION = 1
+VERSION = 2
 TREE_TYPE = "GeometryNodeTree"
 DESCRIPTION = "Turns the scarf's tail about the nape to the wind the walker feels (the wind less its walk)"
 
@@ -28,8 +29,8 @@ def build(tree):
     h.add_input(tree, "Nape", "NodeSocketVector", "Where the tail leaves the neck (the object's space)")
     h.add_input(tree, "Built Heading", "NodeSocketFloat", "The tail's heading as built (radians from +X "
                 "toward +Y)", math.pi, subtype="ANGLE")
-    h.add_input(tree, "Calm Speed", "NodeSocketFloat", "Felt wind (units a second) under which the turn "
-                "fades out", scarf.CALM_SPEED, 1e-6)
+    h.add_input(tree, "Calm Speed", "NodeSocketFloat", "Felt wind (units a second) under which the tail "
+                "eases to straight back", scarf.CALM_SPEED, 1e-6)
     h.add_output(tree, "Geometry", "NodeSocketGeometry", "The body, its tail turned")
     group_in, group_out = h.group_io(tree)
     inputs = group_in.outputs
@@ -59,13 +60,17 @@ def build(tree):
     behind = h.math(tree, "SUBTRACT", heading.outputs[0], math.pi, label="From Straight Back")
     sine = h.math(tree, "SINE", behind.outputs[0])
     back_half = h.math(tree, "ARCSINE", sine.outputs[0], label="Into the Back Half")
-    turn = h.math(tree, "ADD", back_half.outputs[0], math.pi, label="Tail Heading")
-    change = h.math(tree, "SUBTRACT", turn.outputs[0], inputs["Built Heading"], label="Turn")
+    cosine = h.math(tree, "COSINE", heading.outputs[0])
+    forward = h.math(tree, "MAXIMUM", cosine.outputs[0], 0.0, label="Blowing Forward")
+    keep = h.math(tree, "SUBTRACT", 1.0, forward.outputs[0], label="Swing Kept")
     fade = h.math(tree, "DIVIDE", felt_speed.outputs["Value"], inputs["Calm Speed"], label="Calm Fade")
     fade.use_clamp = True
-    angle = h.math(tree, "MULTIPLY", change.outputs[0], fade.outputs[0], label="Tail Turn")
+    swing = h.math(tree, "MULTIPLY", back_half.outputs[0], keep.outputs[0], label="Swing")
+    faded = h.math(tree, "MULTIPLY", swing.outputs[0], fade.outputs[0], label="Swing, Faded")
+    turn = h.math(tree, "ADD", faded.outputs[0], math.pi, label="Tail Heading")
+    angle = h.math(tree, "SUBTRACT", turn.outputs[0], inputs["Built Heading"], label="Tail Turn")
     h.frame(tree, "Heading Downwind, Behind",
-            (xyz, heading, behind, sine, back_half, turn, change, fade, angle))
+            (xyz, heading, behind, sine, back_half, cosine, forward, keep, fade, swing, faded, turn, angle))
 
     flutter = h.add_node(tree, "GeometryNodeInputNamedAttribute", data_type="FLOAT",
                          inputs={"Name": scarf.FLUTTER_ATTRIBUTE})
