@@ -49,7 +49,7 @@ def test_the_balance_leaves_the_shade_as_eevee_lights_it(eevee_scene, sandscape)
     of view whose shadow falls across the ground in view: the balance lifts the lit sand by at
     least LIT_GAIN and the wall's shadow by no more than SHADE_TOLERANCE (glints off; the first
     build, a diffuse, lifted the shade's sky light with the sun's: x2.04 here; now x1.003 and the lit
-    sand x2.17 on 5.2, x1.003 and x2.22 on 5.0, when written). With the glints on, they add at most
+    sand x2.18 on 5.2, x1.004 and x2.23 on 5.0, when written). With the glints on, they add at most
     GLINTS_IN_SHADE to the shadow (+0.04 % when written; +3.4 % before they kept to the sun)."""
     scene = eevee_scene
     bpy.ops.mesh.primitive_plane_add(size=400)
