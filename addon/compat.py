@@ -43,6 +43,17 @@ def modifier_input(modifier, identifier):
     return tuple(value) if hasattr(value, "__len__") and not isinstance(value, str) else value
 
 
+def modifier_input_identifiers(modifier):
+    """A geometry-nodes modifier's input identifiers by their sockets' names."""
+    return {item.name: item.identifier for item in modifier.node_group.interface.items_tree
+            if item.item_type == "SOCKET" and item.in_out == "INPUT"}
+
+
+def set_modifier_input_named(modifier, name, value):
+    """Set a geometry-nodes modifier input by its socket's name (a group's own, never a user's)."""
+    set_modifier_input(modifier, modifier_input_identifiers(modifier)[name], value)
+
+
 def eevee_dering_limit():
     """The contrast EEVEE's world lighting keeps before deringing, in this Blender (core.atmosphere)."""
     return air.EEVEE_DERING_LIMIT[(5, 2) if bpy.app.version >= (5, 2) else (5, 0)]

@@ -7,6 +7,9 @@ marked invalid and Blender skips it until the file is reloaded or the driver edi
 re-enables ours once their targets are there again.
 """
 
+# A lamp's light per colour channel: its energy times its tint, none while it is hidden from renders.
+LIGHT_EXPRESSION = "energy * tint * (1 - hidden)"
+
 # The linear value the view shows as white, from a variable `exposure` on the scene's
 # view_settings.exposure: what the compositor's effects scale by and threshold against.
 WHITE_EXPRESSION = "pow(2, -exposure)"
@@ -47,6 +50,19 @@ def follow_lamp_axis(sockets, lamp):
             socket.default_value = 0.0
         else:
             drive(socket, "default_value", name, lamp_axis(lamp, names))
+
+
+def follow_lamp_light(sockets, lamp):
+    """Drive three sockets' values by a lamp's light, red, green and blue (None: no lamp, 0)."""
+    for index, socket in enumerate(sockets):
+        if lamp is None:
+            socket.driver_remove("default_value")
+            socket.default_value = 0.0
+        else:
+            drive(socket, "default_value", LIGHT_EXPRESSION,
+                  [("energy", "OBJECT", lamp, "data.energy"),
+                   ("tint", "OBJECT", lamp, f"data.color[{index}]"),
+                   ("hidden", "OBJECT", lamp, "hide_render")])
 
 
 def rearm(animation_data, expressions, ready):

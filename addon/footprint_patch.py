@@ -166,9 +166,7 @@ def ensure_cut(terrain, frame, low, high):
         modifier.node_group = h.ensure_group(region_cut)
     elif modifier.node_group.get(h.VERSION_KEY) != region_cut.VERSION:
         modifier.node_group = h.ensure_group(region_cut)
-    identifiers = {item.name: item.identifier for item in modifier.node_group.interface.items_tree
-                   if item.item_type == "SOCKET" and item.in_out == "INPUT"}
-    compat.set_modifier_input(modifier, identifiers["Min"], (float(low[0]), float(low[1]), -1e30))
-    compat.set_modifier_input(modifier, identifiers["Max"], (float(high[0]), float(high[1]), 1e30))
-    compat.set_modifier_input(modifier, identifiers["Frame"], frame)
+    compat.set_modifier_input_named(modifier, "Min", (float(low[0]), float(low[1]), -1e30))
+    compat.set_modifier_input_named(modifier, "Max", (float(high[0]), float(high[1]), 1e30))
+    compat.set_modifier_input_named(modifier, "Frame", frame)
     return modifier

@@ -96,9 +96,7 @@ def write_points(scene, terrain, frame, points, collection):
         obj.hide_render = True  # a marker for the artist, never part of the picture
     markers = next((m for m in obj.modifiers if m.type == "NODES"), None)
     if markers is not None:
-        radius = next(i.identifier for i in markers.node_group.interface.items_tree
-                      if getattr(i, "in_out", None) == "INPUT" and i.name == "Radius")
-        compat.set_modifier_input(markers, radius, units.to_units(scene, MARKER_RADIUS))
+        compat.set_modifier_input_named(markers, "Radius", units.to_units(scene, MARKER_RADIUS))
     obj.parent = frame
     obj.matrix_parent_inverse.identity()
     obj.matrix_basis.identity()

@@ -14,7 +14,7 @@ import math
 
 from ..node_groups import eevee_balance
 from ..node_groups import helper as h
-from . import drivers, sky_eevee
+from . import drivers
 from . import ownership as own
 from .sun_lamp import scene_sun
 
@@ -126,15 +126,8 @@ def follow_sun(material, scene):
     sun = scene_sun(scene)
     drivers.follow_lamp_axis(sun_node.inputs[:3], sun)
     irradiance = own.node(material.node_tree, SUN_IRRADIANCE)
-    for index, socket in enumerate(irradiance.inputs[:3] if irradiance is not None else ()):
-        if sun is None:
-            socket.driver_remove("default_value")
-            socket.default_value = 0.0
-        else:
-            drivers.drive(socket, "default_value", sky_eevee.LIGHT_EXPRESSION,
-                          [("energy", "OBJECT", sun, "data.energy"),
-                           ("tint", "OBJECT", sun, f"data.color[{index}]"),
-                           ("hidden", "OBJECT", sun, "hide_render")])
+    if irradiance is not None:
+        drivers.follow_lamp_light(irradiance.inputs[:3], sun)
 
 
 def follows_scene_sun(material, scene):

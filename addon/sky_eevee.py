@@ -33,7 +33,6 @@ from .sun_lamp import SKY_SUN_SIZE
 OUTPUT = "Sandscape EEVEE World Output"
 SUN, SUN_LIGHT = "Sandscape EEVEE Ground Sun", "Sandscape EEVEE Ground Sun Light"
 SKY_LIGHT, GROUND_COLOR = "Sandscape EEVEE Ground Sky Light", "Sandscape EEVEE Ground Colour"
-LIGHT_EXPRESSION = "energy * tint * (1 - hidden)"  # a lamp hidden from renders lights no sand
 CLAMP = "Sandscape EEVEE Clamp"
 CLAMP_EXPRESSION = "limit if limit > 0 else 1e9"  # 0: EEVEE clamps nothing
 DISC, DISC_EDGE = "Sandscape EEVEE Sun Disc", "Sandscape EEVEE Sun Disc Edge"
@@ -186,15 +185,7 @@ def follow_sun(world, sun):
         return
     drivers.follow_lamp_axis(direction.inputs[:3], sun)
     _follow_disc_size(tree, sun)
-    for index, socket in enumerate(light.inputs[:3]):
-        if sun is None:
-            socket.driver_remove("default_value")
-            socket.default_value = 0.0
-        else:
-            drivers.drive(socket, "default_value", LIGHT_EXPRESSION,
-                          [("energy", "OBJECT", sun, "data.energy"),
-                           ("tint", "OBJECT", sun, f"data.color[{index}]"),
-                           ("hidden", "OBJECT", sun, "hide_render")])
+    drivers.follow_lamp_light(light.inputs[:3], sun)
 
 
 def _follow_disc_size(tree, sun):

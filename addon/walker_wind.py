@@ -36,11 +36,13 @@ def ensure(scene, walker, walk_speed):
         walker.modifiers.move(index, 0)
     scale = units.to_units(scene, 1.0)
     heading = walker_figure.TAIL_HEADING
-    _set(modifier, "Wind", tuple(float(v) for v in scene.sandscape_atmosphere.wind))
-    _set(modifier, "Walk Speed", float(walk_speed))
-    _set(modifier, "Nape", tuple(float(v) * scale for v in walker_figure.tail_centre(0.0)))
-    _set(modifier, "Built Heading", math.atan2(heading[1], heading[0]))
-    _set(modifier, "Calm Speed", scarf.CALM_SPEED * scale)
+    inputs = {"Wind": tuple(float(v) for v in scene.sandscape_atmosphere.wind),
+              "Walk Speed": float(walk_speed),
+              "Nape": tuple(float(v) * scale for v in walker_figure.tail_centre(0.0)),
+              "Built Heading": math.atan2(heading[1], heading[0]),
+              "Calm Speed": scarf.CALM_SPEED * scale}
+    for name, value in inputs.items():
+        compat.set_modifier_input_named(modifier, name, value)
     return modifier
 
 
@@ -50,13 +52,7 @@ def set_wind(scene, wind):
     for obj in scene.objects:
         modifier = find_modifier(obj) if obj.type == "MESH" else None
         if modifier is not None:
-            _set(modifier, "Wind", tuple(float(v) for v in wind))
+            compat.set_modifier_input_named(modifier, "Wind", tuple(float(v) for v in wind))
             obj.update_tag()
             done += 1
     return done
-
-
-def _set(modifier, name, value):
-    identifier = next(item.identifier for item in modifier.node_group.interface.items_tree
-                      if item.item_type == "SOCKET" and item.in_out == "INPUT" and item.name == name)
-    compat.set_modifier_input(modifier, identifier, value)

@@ -91,8 +91,7 @@ def test_cut_and_patch_share_every_face_once(sandscape, walk):
     assert not centres & {tuple(np.round(p.center, 6)) for p in patch.polygons}
     # The Region Cut group against its twin on the original faces.
     modifier = walk.terrain.modifiers[0]
-    identifiers = {item.name: item.identifier for item in modifier.node_group.interface.items_tree
-                   if item.item_type == "SOCKET" and item.in_out == "INPUT"}
+    identifiers = sandscape.addon.compat.modifier_input_identifiers(modifier)
     low, high = (sandscape.addon.compat.modifier_input(modifier, identifiers[name])
                  for name in ("Min", "Max"))
     original = np.array([p.center for p in walk.terrain.data.polygons])

@@ -51,9 +51,9 @@ def scarf_reach(point, nape):
 
 
 def _inputs(modifier, sandscape):
-    return {item.name: sandscape.addon.compat.modifier_input(modifier, item.identifier)
-            for item in modifier.node_group.interface.items_tree
-            if item.item_type == "SOCKET" and item.in_out == "INPUT" and item.name != "Geometry"}
+    compat = sandscape.addon.compat
+    return {name: compat.modifier_input(modifier, identifier)
+            for name, identifier in compat.modifier_input_identifiers(modifier).items() if name != "Geometry"}
 
 
 @pytest.mark.parametrize("unit_scale", [1.0, 0.01])
