@@ -49,7 +49,7 @@ def ensure_walker(scene, terrain, start, end, sway=SWAY):
         walker_gait.swap_mesh(walker, walker_figure.figure_mesh(units.to_units(scene, 1.0)))
         walker_figure.dress(walker, cloth)
     walker[walker_figure.FIGURE_SHAPE_KEY] = walker_figure.FIGURE_SHAPE
-    walker_wind.ensure(scene, walker, path.data.splines[0].calc_length() / ((end - start) / fps))
+    walker_wind.ensure(scene, walker, path.data.splines[0].calc_length() / ((end - start) / fps), start, end)
     walker_flutter.ensure(walker, units.to_units(scene, 1.0))
     _stay_upright(walker)
     _animate(walker, start, end)

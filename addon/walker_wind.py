@@ -1,7 +1,8 @@
 """The scarf's tail streams downwind as the walker turns: the Sandscape Scarf Wind group as a
 geometry-nodes modifier on the walker's body, ahead of the flutter's Wave (which ripples the tail
 wherever it points). It reads the walker's own transform each frame; we set its wind (the scene's,
-again whenever Add Atmosphere changes it), the walk's speed, the nape and the tail's built heading.
+again whenever Add Atmosphere changes it), the walk's speed (a driver: none once the walker has
+stopped and the scarf settled), the nape and the tail's built heading.
 """
 
 import math
@@ -9,7 +10,7 @@ import math
 from ..core import scarf
 from ..node_groups import helper as h
 from ..node_groups import scarf_wind
-from . import compat, units, walker_figure
+from . import compat, drivers, units, walker_figure
 
 MODIFIER = "Sandscape Scarf Wind"
 
@@ -19,9 +20,10 @@ def find_modifier(walker):
                  and m.node_group.get(h.GROUP_KEY) == scarf_wind.NAME), None)
 
 
-def ensure(scene, walker, walk_speed):
+def ensure(scene, walker, walk_speed, start, end):
     """The walker's Scarf Wind modifier, made or updated, first in the stack; `walk_speed`: scene
-    units a second. None (and any old one removed) where the body has no tail to turn."""
+    units a second from frame `start` to `end`, felt less and less after it (a driver). None (and
+    any old one removed) where the body has no tail to turn."""
     modifier = find_modifier(walker)
     if walker.data.attributes.get(scarf.FLUTTER_ATTRIBUTE) is None:
         if modifier is not None:
@@ -37,12 +39,14 @@ def ensure(scene, walker, walk_speed):
     scale = units.to_units(scene, 1.0)
     heading = walker_figure.TAIL_HEADING
     inputs = {"Wind": tuple(float(v) for v in scene.sandscape_atmosphere.wind),
-              "Walk Speed": float(walk_speed),
               "Nape": tuple(float(v) * scale for v in walker_figure.tail_centre(0.0)),
               "Built Heading": math.atan2(heading[1], heading[0]),
               "Calm Speed": scarf.CALM_SPEED * scale}
     for name, value in inputs.items():
         compat.set_modifier_input_named(modifier, name, value)
+    settle = scarf.SETTLE_TIME * scene.render.fps / scene.render.fps_base
+    owner, path = compat.modifier_input_driver_target(modifier, "Walk Speed")
+    drivers.drive(owner, path, scarf.walk_speed_expression(walk_speed, start, end, settle), ())
     return modifier
 
 

@@ -17,6 +17,7 @@ FLUTTER_ATTRIBUTE = "sandscape_flutter"  # on the figure's points: t^FLUTTER_GRO
 FLUTTER_GROWTH = 1.5  # held at the nape, free at the end
 ROOT_SHARE = 0.25  # of the tail's length: where the turn reaches its full angle
 CALM_SPEED = 1.5  # metres a second of felt wind (a light breeze) at which the tail takes its full heading
+SETTLE_TIME = 1.0  # seconds the tail takes to stop feeling the walk once the walker stops
 
 
 def felt_heading(felt_xy):
@@ -57,6 +58,21 @@ def turn_points(points, flutter, angle, pivot):
     out[:, 0] = pivot[0] + cos * dx - sin * dy
     out[:, 1] = pivot[1] + sin * dx + cos * dy
     return out
+
+
+def walk_speed_at(frame, speed, start, end, settle_frames):
+    """The walking speed the tail feels at `frame`: `speed` from the walk's first frame to its
+    last, easing linearly to none over `settle_frames` after it (the scarf swings round as the
+    walker stands; it lags, so no ease before the walk: the shot may open mid-stride)."""
+    frame = np.asarray(frame, float)
+    fade = np.clip((end + settle_frames - frame) / settle_frames, 0.0, 1.0)
+    return np.where(frame >= start, speed * fade, 0.0)
+
+
+def walk_speed_expression(speed, start, end, settle_frames):
+    """walk_speed_at as a driver's simple expression of `frame` (no Python on a farm)."""
+    return (f"({float(speed)!r} * min(max(({float(end + settle_frames)!r} - frame) / "
+            f"{float(settle_frames)!r}, 0), 1) if frame >= {float(start)!r} else 0)")
 
 
 def felt_wind(wind, walker_matrix, walk_speed):

@@ -152,3 +152,36 @@ def test_a_weaving_walker_in_a_tailwind_does_not_whip_its_scarf(sandscape, tailw
     print(f"tailwind {tailwind} m/s: the tail's end turns up to {steps.max():.1f} degrees a frame, "
           f"{np.ptp(np.unwrap(np.radians(headings))) * 180 / math.pi:.0f} in all")
     assert steps.max() <= MAX_TURN
+
+
+def test_the_scarf_stops_feeling_the_walk_once_the_walker_stands(sandscape):
+    """Walked over frames 1-48 of a 96-frame shot in a wind from the left: the walk's speed is felt
+    through frame 48, half of it half a settle later, none after it, and then the tail's end points
+    along the scene's wind itself, not the wind felt while walking."""
+    scene, walker, _ = _walker()
+    scene.frame_end = 48
+    assert bpy.ops.sandscape.add_walker() == {"FINISHED"}
+    scene.frame_end = 96
+    walker.modifiers[1].show_viewport = False
+    modifier = sandscape.addon.walker_wind.find_modifier(walker)
+    settle = scarf.SETTLE_TIME * scene.render.fps / scene.render.fps_base
+    speeds = {}
+    for frame in (1, 48, 48 + settle / 2, 48 + settle, 90):
+        scene.frame_set(int(frame), subframe=frame % 1)
+        speeds[frame] = _inputs(modifier, sandscape)["Walk Speed"]
+    walking = speeds[1]
+    assert walking == pytest.approx(1.4, rel=0.15) and speeds[48] == pytest.approx(walking, rel=1e-6)
+    assert speeds[48 + settle / 2] == pytest.approx(walking / 2, rel=1e-3)
+    assert speeds[48 + settle] == speeds[90] == 0.0
+    assert scarf.walk_speed_at(48 + settle / 2, walking, 1, 48, settle) == pytest.approx(walking / 2)
+    flutter = np.array([d.value for d in walker.data.attributes[scarf.FLUTTER_ATTRIBUTE].data])
+    nape = sandscape.addon.walker_figure.tail_centre(0.0)
+    wind = np.array(scene.sandscape_atmosphere.wind)
+    points = _evaluated(walker, 90)
+    matrix = np.array(walker.matrix_world)
+    tail_end = points[int(np.argmax(flutter))]
+    off = _off_wind(matrix, nape, wind, tail_end)
+    forward = matrix[:3, 0] / np.linalg.norm(matrix[:3, 0])
+    off_walking = _off_wind(matrix, nape, wind - walking * forward, tail_end)
+    print(f"standing, the tail's end is {off:+.1f} degrees off the wind ({off_walking:+.1f} off the walk's)")
+    assert abs(off) < END_CURL < abs(off_walking)
