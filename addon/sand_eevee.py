@@ -3,8 +3,9 @@
 EEVEE renders Physical Sand's rough diffuse as Lambert and its sheen like a diffuse: under a low
 sun the sand came out a third as bright as in Cycles seen with the sun behind, under a high sun
 brighter. The material gets a second Material Output that only EEVEE uses, whose surface is the
-Cycles surface scaled by Sandscape EEVEE Balance where Cycles is dimmer, and a diffuse of the
-sand's colour added where it is brighter. The sun's direction reaches the group by simple-
+Cycles surface scaled by Sandscape EEVEE Balance where Cycles is dimmer (the light less the sun's
+given back, so only the sun's is dimmed), and the sand's colour times the sun's light times
+(balance - 1) added where it is brighter. The sun's direction reaches the group by simple-
 expression drivers on the scene's sun lamp (no Python needed on a farm). Cycles' output is
 untouched. The Journey look's EEVEE output is its own EEVEE Shader (its contrast through one
 diffuse, the driven sun undoing Lambert's cosine) with the glints on top.
@@ -38,8 +39,13 @@ SUN_LIGHT = tuple(f"{SUN_LIGHT_PREFIX}{part}" for part in (
 SUN_IRRADIANCE, GLINTS_WHERE_LIT = "Sandscape EEVEE Sun Irradiance", "Sandscape EEVEE Glints Where Lit"
 SUN_REACH = tuple(f"Sandscape EEVEE Sun Reach {part}" for part in (
     "Lamp Total", "Lit Total", "Cosine", "Lamp at Normal", "Over Pi", "Held", "Share"))
+# Where the balance dims (below 1) it scales the whole surface: the ambient's share it took is
+# given back, the sand's colour times (1 − balance) times the light with the sun's taken out.
+AMBIENT_KEPT, SUN_BOOSTED, LIGHT_CORRECTION = ("Sandscape EEVEE Ambient Kept", "Sandscape EEVEE Sun Boosted",
+                                               "Sandscape EEVEE Light Correction")
 NODES = (OUTPUT, BALANCE, SUN, SCALE, BOOST, BOOST_COLOR, BOTH, DOWN, UP, DOWN_HELD, UP_HELD, FRAME,
-         JOURNEY_SURFACE, BOOST_LIGHT, SUN_IRRADIANCE, GLINTS_WHERE_LIT) + SUN_LIGHT + SUN_REACH
+         JOURNEY_SURFACE, BOOST_LIGHT, SUN_IRRADIANCE, GLINTS_WHERE_LIT, AMBIENT_KEPT, SUN_BOOSTED,
+         LIGHT_CORRECTION) + SUN_LIGHT + SUN_REACH
 REACH_MIN_COSINE = 0.02  # below it the sun's light and the lamp's are both near 0: held
 
 
@@ -57,8 +63,9 @@ def attach(material, scene, look_node, look, glint=None):
         _remove(tree)
         cycles.target = "ALL"
         return
-    older = not journey and own.node(tree, GLINTS_WHERE_LIT) is None  # before 2026-11-29: the boost a
-    # diffuse (it brightened the sky's light too), lit glints in the shade
+    # Before 2026-11-29: the boost a diffuse (it brightened the sky's light too), lit glints in the
+    # shade, the dimming balance scaling the ambient.
+    older = not journey and (own.node(tree, GLINTS_WHERE_LIT) is None or own.node(tree, AMBIENT_KEPT) is None)
     if own.node(tree, OUTPUT) is not None and ((own.node(tree, JOURNEY_SURFACE) is None) == journey or older):
         _remove(tree)  # built for the other look, or an older build
     if journey:
@@ -197,19 +204,27 @@ def _ensure_nodes(tree, look_node):
     clamped = h.math(tree, "MAXIMUM", down.outputs[0], 0.0)
     clamped.name = DOWN_HELD
     h.link(tree, clamped.outputs[0], scale.inputs["Fac"])
-    # Where it is brighter: a diffuse of the sand's colour times (balance − 1).
+    # Where it is brighter: the sand's colour times the sun's light times (balance − 1).
     up = h.math(tree, "SUBTRACT", ratio, 1.0, label="Balance − 1")
     up.name = UP
     extra = h.math(tree, "MAXIMUM", up.outputs[0], 0.0)
     extra.name = UP_HELD
-    color = h.add_node(tree, "ShaderNodeVectorMath", name=BOOST_COLOR, label="Sand Colour × (Balance − 1)",
-                       operation="SCALE")
-    h.link(tree, extra.outputs[0], color.inputs["Scale"])
     # The balance corrects the sun's light (it was fitted to it): the sky's and the haze's, which
-    # reach the shade too, are not brightened with it.
+    # reach the shade too, are neither brightened where it lifts nor dimmed where it scales.
     lit, lit_nodes = _sun_light(tree, normal[0].from_socket if normal else None, sun.outputs[0])
-    light = h.vector_math(tree, "MULTIPLY", color.outputs[0], lit, label="× the Sun's Light")
-    boost = h.add_node(tree, "ShaderNodeEmission", name=BOOST, label="Brighter, as Cycles (the sun's light)",
+    boosted = h.vector_math(tree, "SCALE", lit, label="Sun's Light × (Balance − 1)")
+    boosted.name = SUN_BOOSTED
+    h.link(tree, extra.outputs[0], boosted.inputs["Scale"])
+    unlit = tree.nodes[f"{SUN_LIGHT_PREFIX}Unlit RGB"].outputs["Color"]
+    kept = h.vector_math(tree, "SCALE", unlit, label="Light Less the Sun's × (1 − Balance)")
+    kept.name = AMBIENT_KEPT
+    h.link(tree, clamped.outputs[0], kept.inputs["Scale"])
+    correction = h.vector_math(tree, "ADD", boosted.outputs[0], kept.outputs[0], label="Light to Add")
+    correction.name = LIGHT_CORRECTION
+    color = h.add_node(tree, "ShaderNodeVectorMath", name=BOOST_COLOR, label="Sand Colour", operation="SCALE",
+                       inputs={"Scale": 1.0})
+    light = h.vector_math(tree, "MULTIPLY", color.outputs[0], correction.outputs[0], label="× Light to Add")
+    boost = h.add_node(tree, "ShaderNodeEmission", name=BOOST, label="As Cycles (the sun's light alone)",
                        inputs={"Strength": 1.0})
     h.link(tree, light.outputs[0], boost.inputs["Color"])
     light.name = BOOST_LIGHT
@@ -225,8 +240,8 @@ def _ensure_nodes(tree, look_node):
     h.link(tree, boost.outputs[0], both.inputs[1])
     h.link(tree, both.outputs[0], output.inputs["Surface"])
     frame = h.frame(tree, "EEVEE: Balanced to Cycles", (sun, balance, down, clamped, scale, up, extra, color,
-                                                         *lit_nodes, light, boost, *reach_nodes, where_lit,
-                                                         both, output))
+                                                         *lit_nodes, boosted, kept, correction, light, boost,
+                                                         *reach_nodes, where_lit, both, output))
     frame.name = FRAME
     return output
 

@@ -84,8 +84,8 @@ def test_the_balance_follows_the_sun_and_the_prints_reach_eevee(sandscape):
 
 def test_an_older_balance_boosting_the_sky_too_is_rebuilt(sandscape):
     """A material made before the boost took the sun's light alone (a Lambert diffuse named as the
-    boost) and before lit glints kept to the sun: the next Add Sand Material builds the EEVEE nodes
-    anew, the same nodes as a new one's."""
+    boost) and before lit glints kept to the sun, or before the dimming balance gave the ambient
+    back: the next Add Sand Material builds the EEVEE nodes anew, the same nodes as a new one's."""
     sand_eevee = sandscape.addon.sand_eevee
     plane = readback.uv_plane()
     assert bpy.ops.sandscape.add_sand_material() == {"FINISHED"}
@@ -107,3 +107,9 @@ def test_an_older_balance_boosting_the_sky_too_is_rebuilt(sandscape):
     assert sorted(node.name for node in tree.nodes) == fresh
     assert tree.nodes[sand_eevee.BOOST].bl_idname == "ShaderNodeEmission"
     assert source(tree.nodes[sand_eevee.BOTH].inputs[1]).node == tree.nodes[sand_eevee.BOOST]
+    # A build whose dimming balance scaled the ambient too (before its light was given back).
+    tree.nodes.remove(tree.nodes[sand_eevee.AMBIENT_KEPT])
+    assert bpy.ops.sandscape.add_sand_material() == {"FINISHED"}
+    assert sorted(node.name for node in tree.nodes) == fresh
+    kept = tree.nodes[sand_eevee.AMBIENT_KEPT]
+    assert source(kept.inputs[0]).node == tree.nodes[f"{sand_eevee.SUN_LIGHT_PREFIX}Unlit RGB"]
