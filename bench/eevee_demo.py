@@ -34,35 +34,15 @@ def regions(bpy, scene, camera):
     """{region: (H, W) bool mask, rows bottom-up} from one ray per pixel centre (volumes hidden)."""
     from devtools import scenes
 
-    volumes = [o for o in scene.objects if o.get("sandscape_object") in {"dust_volume", "clouds"}]
-    hidden = [o.hide_viewport for o in volumes]
-    for obj in volumes:
-        obj.hide_viewport = True
-    try:
-        depsgraph = bpy.context.evaluated_depsgraph_get()
-        origins, directions = scenes.camera_rays(camera, *RESOLUTION)
-        sun = next(o for o in scene.objects if o.get("sandscape_object") == "sun")
-        to_sun = sun.matrix_world.to_3x3().col[2].normalized()
-        kind = np.zeros(origins.shape[:2], "U8")
-        distance = np.full(origins.shape[:2], np.inf)
-        for index in np.ndindex(kind.shape):
-            hit, where, normal, _, obj, _ = scene.ray_cast(depsgraph, origins[index], directions[index])
-            if not hit:
-                kind[index] = "sky"
-                continue
-            distance[index] = np.linalg.norm(np.array(where) - origins[index])
-            if _is_walker(obj):
-                kind[index] = "walker"
-                continue
-            lit = normal.dot(to_sun) > 0 and not scene.ray_cast(depsgraph, where + normal * 0.02, to_sun)[0]
-            kind[index] = "sun" if lit else "shade"
-    finally:
-        for obj, was in zip(volumes, hidden, strict=True):
-            obj.hide_viewport = was
-    near = distance < NEAR
-    return {"sky": kind == "sky", "walker": kind == "walker",
-            "near sand in sun": (kind == "sun") & near, "near sand in shade": (kind == "shade") & near,
-            "far sand in sun": (kind == "sun") & ~near, "far sand in shade": (kind == "shade") & ~near}
+    lamp = next(o for o in scene.objects if o.get("sandscape_object") == "sun")
+    hits = scenes.pixel_hits(scene, camera, *RESOLUTION, lamp.matrix_world.to_3x3().col[2])
+    walker = np.vectorize(_is_walker, otypes=[bool])(hits["object"])
+    sand = hits["hit"] & ~walker
+    near = hits["distance"] < NEAR
+    sun, shade = sand & hits["sunlit"], sand & ~hits["sunlit"]
+    return {"sky": ~hits["hit"], "walker": walker,
+            "near sand in sun": sun & near, "near sand in shade": shade & near,
+            "far sand in sun": sun & ~near, "far sand in shade": shade & ~near}
 
 
 def _is_walker(obj):

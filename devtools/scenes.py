@@ -4,6 +4,7 @@ import math
 
 import bpy
 import numpy as np
+from mathutils import Vector
 
 
 def group_material(group, values, output="Mask", name="Probe"):
@@ -93,6 +94,36 @@ def camera_rays(camera_obj, width, height, columns=None, rows=None):
         ends.append(world[..., :3] / world[..., 3:4])
     direction = ends[1] - ends[0]
     return ends[0], direction / np.linalg.norm(direction, axis=-1, keepdims=True)
+
+
+def pixel_hits(scene, camera_obj, width, height, to_sun, offset=0.02, hidden=("dust_volume", "clouds")):
+    """What the ray through each pixel centre hits, volumes' boxes (our objects of the `hidden`
+    kinds) left out: {"hit", "distance", "normal_z", "object", "sunlit"} arrays (height, width),
+    rows bottom-up; sunlit: a surface facing `to_sun` (a world vector towards the sun) with
+    nothing between (a second ray from `offset` off the surface)."""
+    boxes = [o for o in scene.objects if o.get("sandscape_object") in hidden]
+    was = [o.hide_viewport for o in boxes]
+    for obj in boxes:
+        obj.hide_viewport = True
+    try:
+        depsgraph = bpy.context.evaluated_depsgraph_get()
+        origins, directions = camera_rays(camera_obj, width, height)
+        to_sun = Vector(to_sun).normalized()
+        shape = origins.shape[:2]
+        out = {"hit": np.zeros(shape, bool), "distance": np.full(shape, np.inf), "normal_z": np.zeros(shape),
+               "object": np.full(shape, None, object), "sunlit": np.zeros(shape, bool)}
+        for index in np.ndindex(shape):
+            hit, where, normal, _, obj, _ = scene.ray_cast(depsgraph, origins[index], directions[index])
+            if not hit:
+                continue
+            out["hit"][index], out["object"][index], out["normal_z"][index] = True, obj, normal.z
+            out["distance"][index] = np.linalg.norm(np.array(where) - origins[index])
+            out["sunlit"][index] = normal.dot(to_sun) > 0 and not scene.ray_cast(
+                depsgraph, where + normal * offset, to_sun)[0]
+    finally:
+        for obj, hide in zip(boxes, was, strict=True):
+            obj.hide_viewport = hide
+    return out
 
 
 def project(camera_obj, points, width, height):

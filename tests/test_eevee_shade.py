@@ -23,18 +23,9 @@ GLINTS_IN_SHADE = 0.005  # what lit glints may add to the shade's brightness in 
 def _masks(scene, camera, to_sun):
     """(in the wall's shadow, in sun) among the ground's pixels, rows bottom-up, from a ray per pixel
     (the dust box, a mesh too, hidden from the rays)."""
-    box = next(o for o in scene.objects if o.get("sandscape_object") == "dust_volume")
-    box.hide_viewport = True
-    depsgraph = bpy.context.evaluated_depsgraph_get()
-    origins, directions = scenes.camera_rays(camera, *SIZE)
-    shade, lit = np.zeros(SIZE[::-1], bool), np.zeros(SIZE[::-1], bool)
-    for index in np.ndindex(shade.shape):
-        hit, where, normal, *_ = scene.ray_cast(depsgraph, origins[index], directions[index])
-        if hit and normal.z > 0.99:
-            blocked = scene.ray_cast(depsgraph, where + normal * 0.01, to_sun)[0]
-            shade[index], lit[index] = blocked, not blocked
-    box.hide_viewport = False
-    return _inner(shade), _inner(lit)
+    hits = scenes.pixel_hits(scene, camera, *SIZE, to_sun)
+    ground = hits["hit"] & (hits["normal_z"] > 0.99)
+    return _inner(ground & ~hits["sunlit"]), _inner(ground & hits["sunlit"])
 
 
 def _inner(mask, steps=2):
