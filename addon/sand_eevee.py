@@ -64,8 +64,8 @@ def attach(material, scene, look_node, look, glint=None):
         cycles.target = "ALL"
         return
     # Before 2026-11-29: the boost a diffuse (it brightened the sky's light too), lit glints in the
-    # shade, the dimming balance scaling the ambient.
-    older = not journey and (own.node(tree, GLINTS_WHERE_LIT) is None or own.node(tree, AMBIENT_KEPT) is None)
+    # shade (both looks), the dimming balance scaling the ambient.
+    older = own.node(tree, GLINTS_WHERE_LIT) is None or (not journey and own.node(tree, AMBIENT_KEPT) is None)
     if own.node(tree, OUTPUT) is not None and ((own.node(tree, JOURNEY_SURFACE) is None) == journey or older):
         _remove(tree)  # built for the other look, or an older build
     if journey:
@@ -165,21 +165,30 @@ def follow_scene_sun(scene):
 
 def _ensure_journey_nodes(tree, look_node, glint):
     """Journey's EEVEE output: the look's EEVEE Shader (its contrast through one diffuse, lit by
-    the driven sun) with the glints' facets, or their emission, added."""
+    the driven sun) with the glints' facets, or their emission, added where the sun reaches."""
     output = own.node(tree, OUTPUT)
     if output is None:
         output = h.add_node(tree, "ShaderNodeOutputMaterial", name=OUTPUT, label="EEVEE Output",
                             target="EEVEE")
         sun = h.add_node(tree, "ShaderNodeCombineXYZ", name=SUN, label="Sun Direction (driven)")
         both = h.add_node(tree, "ShaderNodeAddShader", name=JOURNEY_SURFACE, label="Sand + Glints (EEVEE)")
-        frame = h.frame(tree, "EEVEE: Journey's Contrast as a Diffuse", (sun, both, output))
+        # The glints where the sun reaches, as on the physical sand (EEVEE's world light has no shadow).
+        normal = look_node.inputs["Normal"].links if "Normal" in look_node.inputs else ()
+        lit, lit_nodes = _sun_light(tree, normal[0].from_socket if normal else None, sun.outputs[0])
+        reach, reach_nodes = _sun_reach(tree, lit, tree.nodes[f"{SUN_LIGHT_PREFIX}N·L"].outputs["Value"])
+        where_lit = h.add_node(tree, "ShaderNodeMixShader", name=GLINTS_WHERE_LIT,
+                               label="Glints Where the Sun Reaches")
+        h.link(tree, reach, where_lit.inputs["Fac"])
+        h.link(tree, where_lit.outputs[0], both.inputs[1])
+        frame = h.frame(tree, "EEVEE: Journey's Contrast as a Diffuse",
+                        (sun, both, *lit_nodes, *reach_nodes, where_lit, output))
         frame.name = FRAME
-    both = own.node(tree, JOURNEY_SURFACE)
+    both, where_lit = own.node(tree, JOURNEY_SURFACE), own.node(tree, GLINTS_WHERE_LIT)
     h.link(tree, own.node(tree, SUN).outputs[0], look_node.inputs["Sun Direction"])
     h.link(tree, look_node.outputs["EEVEE Shader"], both.inputs[0])
     on_top = glint.outputs["Facets"] if "Facets" in glint.outputs else glint.outputs.get("Emission")
     if on_top is not None:
-        h.link(tree, on_top, both.inputs[1])
+        h.link(tree, on_top, where_lit.inputs[2])
     h.link(tree, both.outputs[0], output.inputs["Surface"])
     return output
 

@@ -40,7 +40,10 @@ def test_each_look_gets_its_own_eevee_output_once(sandscape):
         surface = tree.nodes["Sandscape EEVEE Journey Surface"]
         assert source(tree.nodes["Sandscape EEVEE Output"].inputs["Surface"]) == surface.outputs[0]
         assert source(surface.inputs[0]) == look.outputs["EEVEE Shader"]
-        assert source(surface.inputs[1]) == glint.outputs[on_top]
+        where_lit = tree.nodes["Sandscape EEVEE Glints Where Lit"]  # the glints where the sun reaches
+        assert source(surface.inputs[1]) == where_lit.outputs[0] and not where_lit.inputs[1].links
+        assert source(where_lit.inputs[2]) == glint.outputs[on_top]
+        assert source(where_lit.inputs["Fac"]).node.name.startswith("Sandscape EEVEE Sun Reach")
         assert source(look.inputs["Sun Direction"]) == tree.nodes["Sandscape EEVEE Sun"].outputs[0]
         assert source(tree.nodes["Sandscape Output"].inputs["Surface"]).node in (
             glint, tree.nodes.get(sandscape.addon.sand.GLINTS_ADDED))  # Cycles keeps its Toons
