@@ -54,14 +54,6 @@ def set_modifier_input_named(modifier, name, value):
     set_modifier_input(modifier, modifier_input_identifiers(modifier)[name], value)
 
 
-def modifier_input_driver_target(modifier, name):
-    """(owner, data path) a driver on a geometry-nodes modifier input is added with, by its
-    socket's name: the 5.2 input's RNA value, or 5.0's ID property on the modifier."""
-    identifier = modifier_input_identifiers(modifier)[name]
-    holder = _input_holder(modifier, identifier)
-    return (modifier, f'["{identifier}"]') if holder is None else (holder, "value")
-
-
 def eevee_dering_limit():
     """The contrast EEVEE's world lighting keeps before deringing, in this Blender (core.atmosphere)."""
     return air.EEVEE_DERING_LIMIT[(5, 2) if bpy.app.version >= (5, 2) else (5, 0)]

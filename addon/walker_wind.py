@@ -1,8 +1,8 @@
 """The scarf's tail streams downwind as the walker turns: the Sandscape Scarf Wind group as a
 geometry-nodes modifier on the walker's body, ahead of the flutter's Wave (which ripples the tail
 wherever it points). It reads the walker's own transform each frame; we set its wind (the scene's,
-again whenever Add Atmosphere changes it), the walk's speed (a driver: none once the walker has
-stopped and the scarf settled), the nape and the tail's built heading.
+again whenever Add Atmosphere changes it), the walk's speed and frames (none is felt once the
+walker has stopped and the scarf settled), the nape and the tail's built heading.
 """
 
 import math
@@ -10,7 +10,7 @@ import math
 from ..core import scarf
 from ..node_groups import helper as h
 from ..node_groups import scarf_wind
-from . import compat, drivers, units, walker_figure
+from . import compat, units, walker_figure
 
 MODIFIER = "Sandscape Scarf Wind"
 
@@ -22,7 +22,7 @@ def find_modifier(walker):
 
 def ensure(scene, walker, walk_speed, start, end):
     """The walker's Scarf Wind modifier, made or updated, first in the stack; `walk_speed`: scene
-    units a second from frame `start` to `end`, felt less and less after it (a driver). None (and
+    units a second from frame `start` to `end`, felt less and less after it. None (and
     any old one removed) where the body has no tail to turn."""
     modifier = find_modifier(walker)
     if walker.data.attributes.get(scarf.FLUTTER_ATTRIBUTE) is None:
@@ -39,14 +39,13 @@ def ensure(scene, walker, walk_speed, start, end):
     scale = units.to_units(scene, 1.0)
     heading = walker_figure.TAIL_HEADING
     inputs = {"Wind": tuple(float(v) for v in scene.sandscape_atmosphere.wind),
+              "Walk Speed": float(walk_speed), "Walk Start": float(start), "Walk End": float(end),
+              "Settle Frames": scarf.SETTLE_TIME * scene.render.fps / scene.render.fps_base,
               "Nape": tuple(float(v) * scale for v in walker_figure.tail_centre(0.0)),
               "Built Heading": math.atan2(heading[1], heading[0]),
               "Calm Speed": scarf.CALM_SPEED * scale}
     for name, value in inputs.items():
         compat.set_modifier_input_named(modifier, name, value)
-    settle = scarf.SETTLE_TIME * scene.render.fps / scene.render.fps_base
-    owner, path = compat.modifier_input_driver_target(modifier, "Walk Speed")
-    drivers.drive(owner, path, scarf.walk_speed_expression(walk_speed, start, end, settle), ())
     return modifier
 
 

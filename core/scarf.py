@@ -63,16 +63,11 @@ def turn_points(points, flutter, angle, pivot):
 def walk_speed_at(frame, speed, start, end, settle_frames):
     """The walking speed the tail feels at `frame`: `speed` from the walk's first frame to its
     last, easing linearly to none over `settle_frames` after it (the scarf swings round as the
-    walker stands; it lags, so no ease before the walk: the shot may open mid-stride)."""
+    walker stands; it lags, so no ease before the walk: the shot may open mid-stride). The group
+    reads the scene's frame for it."""
     frame = np.asarray(frame, float)
     fade = np.clip((end + settle_frames - frame) / settle_frames, 0.0, 1.0)
     return np.where(frame >= start, speed * fade, 0.0)
-
-
-def walk_speed_expression(speed, start, end, settle_frames):
-    """walk_speed_at as a driver's simple expression of `frame` (no Python on a farm)."""
-    return (f"({float(speed)!r} * min(max(({float(end + settle_frames)!r} - frame) / "
-            f"{float(settle_frames)!r}, 0), 1) if frame >= {float(start)!r} else 0)")
 
 
 def felt_wind(wind, walker_matrix, walk_speed):

@@ -2,7 +2,8 @@
 
 A geometry-nodes modifier on the walker's body: it reads the object's own world transform (Self
 Object), so the tail follows the walker's turns along any path with no keys and no Python on a
-farm. The felt wind is the scene's wind less the walk (Walk Speed along the object's +X), taken
+farm. The felt wind is the scene's wind less the walk (Walk Speed along the object's +X from Walk
+Start to Walk End, easing to none over Settle Frames after it, by the scene's frame), taken
 into the object's space; the tail turns about the upright axis through the Nape to that wind's
 heading reflected into the walker's back half (the nearer straight back the more that wind blows
 forward), its root least. Points are picked and weighted by
@@ -15,7 +16,7 @@ from ..core import scarf
 from . import helper as h
 
 NAME = "Sandscape Scarf Wind"
-VERSION = 2
+VERSION = 3
 TREE_TYPE = "GeometryNodeTree"
 DESCRIPTION = "Turns the scarf's tail about the nape to the wind the walker feels (the wind less its walk)"
 
@@ -26,6 +27,12 @@ def build(tree):
     h.add_input(tree, "Wind", "NodeSocketVector", "The scene's wind (world, units a second)", (3.0, 1.0, 0.0))
     h.add_input(tree, "Walk Speed", "NodeSocketFloat", "How fast the walker walks along its +X (units a "
                 "second)", 1.4, 0.0)
+    h.add_input(tree, "Walk Start", "NodeSocketFloat", "The walk's first frame (before it, no walk is "
+                "felt)", -1e6)
+    h.add_input(tree, "Walk End", "NodeSocketFloat", "The walk's last frame (after it the walk is felt "
+                "less and less)", 1e6)
+    h.add_input(tree, "Settle Frames", "NodeSocketFloat", "Frames after the walk's end over which the "
+                "tail stops feeling it", 24.0, 1e-6)
     h.add_input(tree, "Nape", "NodeSocketVector", "Where the tail leaves the neck (the object's space)")
     h.add_input(tree, "Built Heading", "NodeSocketFloat", "The tail's heading as built (radians from +X "
                 "toward +Y)", math.pi, subtype="ANGLE")
@@ -42,8 +49,19 @@ def build(tree):
                          inputs={"Direction": (1.0, 0.0, 0.0)})
     h.link(tree, info.outputs["Transform"], forward.inputs["Transform"])
     ahead = h.vector_math(tree, "NORMALIZE", forward.outputs[0], label="Forward")
+    # The walk's speed by the frame (core.scarf.walk_speed_at): none before the walk, all of it to
+    # its end, easing to none over the settle after it.
+    time = h.add_node(tree, "GeometryNodeInputSceneTime")
+    settled = h.math(tree, "ADD", inputs["Walk End"], inputs["Settle Frames"], label="Settled Frame")
+    left = h.math(tree, "SUBTRACT", settled.outputs[0], time.outputs["Frame"], label="Frames Left")
+    easing = h.math(tree, "DIVIDE", left.outputs[0], inputs["Settle Frames"], label="Walk Felt")
+    easing.use_clamp = True
+    early = h.math(tree, "LESS_THAN", time.outputs["Frame"], inputs["Walk Start"], label="Before the Walk")
+    started = h.math(tree, "SUBTRACT", 1.0, early.outputs[0], label="Walking or After")
+    share = h.math(tree, "MULTIPLY", easing.outputs[0], started.outputs[0])
+    speed = h.math(tree, "MULTIPLY", inputs["Walk Speed"], share.outputs[0], label="Walk Speed Now")
     walk = h.vector_math(tree, "SCALE", ahead.outputs[0], label="Walk")
-    h.link(tree, inputs["Walk Speed"], walk.inputs["Scale"])
+    h.link(tree, speed.outputs[0], walk.inputs["Scale"])
     felt = h.vector_math(tree, "SUBTRACT", inputs["Wind"], walk.outputs[0], label="Felt Wind")
     felt_speed = h.vector_math(tree, "LENGTH", felt.outputs[0], label="|Felt Wind|")
     to_local = h.add_node(tree, "FunctionNodeInvertMatrix", label="World → Walker")
@@ -52,7 +70,8 @@ def build(tree):
     h.link(tree, felt.outputs[0], local.inputs["Direction"])
     h.link(tree, to_local.outputs["Matrix"], local.inputs["Transform"])
     h.frame(tree, "The Wind the Walker Feels",
-            (me, info, forward, ahead, walk, felt, felt_speed, to_local, local))
+            (me, info, forward, ahead, time, settled, left, easing, early, started, share, speed, walk, felt,
+             felt_speed, to_local, local))
 
     xyz = h.add_node(tree, "ShaderNodeSeparateXYZ")
     h.link(tree, local.outputs[0], xyz.inputs[0])

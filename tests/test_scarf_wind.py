@@ -155,8 +155,9 @@ def test_a_weaving_walker_in_a_tailwind_does_not_whip_its_scarf(sandscape, tailw
 
 
 def test_the_scarf_stops_feeling_the_walk_once_the_walker_stands(sandscape):
-    """Walked over frames 1-48 of a 96-frame shot in a wind from the left: the walk's speed is felt
-    through frame 48, half of it half a settle later, none after it, and then the tail's end points
+    """Walked over frames 1-48 of a 96-frame shot in a wind from the left: the body matches the twin
+    with the walk's speed felt through frame 48, half of it half a settle later, none after it
+    (core.scarf.walk_speed_at, the group reading the scene's frame); standing, the tail's end points
     along the scene's wind itself, not the wind felt while walking."""
     scene, walker, _ = _walker()
     scene.frame_end = 48
@@ -164,21 +165,23 @@ def test_the_scarf_stops_feeling_the_walk_once_the_walker_stands(sandscape):
     scene.frame_end = 96
     walker.modifiers[1].show_viewport = False
     modifier = sandscape.addon.walker_wind.find_modifier(walker)
+    values = _inputs(modifier, sandscape)
     settle = scarf.SETTLE_TIME * scene.render.fps / scene.render.fps_base
-    speeds = {}
-    for frame in (1, 48, 48 + settle / 2, 48 + settle, 90):
-        scene.frame_set(int(frame), subframe=frame % 1)
-        speeds[frame] = _inputs(modifier, sandscape)["Walk Speed"]
-    walking = speeds[1]
-    assert walking == pytest.approx(1.4, rel=0.15) and speeds[48] == pytest.approx(walking, rel=1e-6)
-    assert speeds[48 + settle / 2] == pytest.approx(walking / 2, rel=1e-3)
-    assert speeds[48 + settle] == speeds[90] == 0.0
-    assert scarf.walk_speed_at(48 + settle / 2, walking, 1, 48, settle) == pytest.approx(walking / 2)
+    assert (values["Walk Start"], values["Walk End"], values["Settle Frames"]) == (1.0, 48.0, settle)
+    walking = values["Walk Speed"]
+    assert walking == pytest.approx(1.4, rel=0.15)
+    rest = np.array([v.co[:] for v in walker.data.vertices])
     flutter = np.array([d.value for d in walker.data.attributes[scarf.FLUTTER_ATTRIBUTE].data])
     nape = sandscape.addon.walker_figure.tail_centre(0.0)
     wind = np.array(scene.sandscape_atmosphere.wind)
-    points = _evaluated(walker, 90)
-    matrix = np.array(walker.matrix_world)
+    speeds = [float(scarf.walk_speed_at(f, walking, 1, 48, settle)) for f in (1, 48, 60, 90)]
+    assert speeds == pytest.approx([walking, walking, walking / 2, 0.0])
+    for frame, speed in zip((1, 48, 60, 90), speeds, strict=True):
+        points = _evaluated(walker, frame)
+        matrix = np.array(walker.matrix_world)
+        felt, felt_speed = scarf.felt_wind(wind, matrix, speed)
+        angle = scarf.turn_angle(felt[:2], values["Built Heading"], felt_speed, values["Calm Speed"])
+        assert np.abs(points - scarf.turn_points(rest, flutter, angle, nape)).max() < TWIN_TOLERANCE, frame
     tail_end = points[int(np.argmax(flutter))]
     off = _off_wind(matrix, nape, wind, tail_end)
     forward = matrix[:3, 0] / np.linalg.norm(matrix[:3, 0])
