@@ -173,15 +173,11 @@ def _ensure_journey_nodes(tree, look_node, glint):
         sun = h.add_node(tree, "ShaderNodeCombineXYZ", name=SUN, label="Sun Direction (driven)")
         both = h.add_node(tree, "ShaderNodeAddShader", name=JOURNEY_SURFACE, label="Sand + Glints (EEVEE)")
         # The glints where the sun reaches, as on the physical sand (EEVEE's world light has no shadow).
-        normal = look_node.inputs["Normal"].links if "Normal" in look_node.inputs else ()
-        lit, lit_nodes = _sun_light(tree, normal[0].from_socket if normal else None, sun.outputs[0])
-        reach, reach_nodes = _sun_reach(tree, lit, tree.nodes[f"{SUN_LIGHT_PREFIX}N·L"].outputs["Value"])
-        where_lit = h.add_node(tree, "ShaderNodeMixShader", name=GLINTS_WHERE_LIT,
-                               label="Glints Where the Sun Reaches")
-        h.link(tree, reach, where_lit.inputs["Fac"])
+        links = look_node.inputs["Normal"].links if "Normal" in look_node.inputs else ()
+        normal = links[0].from_socket if links else None
+        _, where_lit, made = _glints_where_lit(tree, normal, sun.outputs[0])
         h.link(tree, where_lit.outputs[0], both.inputs[1])
-        frame = h.frame(tree, "EEVEE: Journey's Contrast as a Diffuse",
-                        (sun, both, *lit_nodes, *reach_nodes, where_lit, output))
+        frame = h.frame(tree, "EEVEE: Journey's Contrast as a Diffuse", (sun, both, *made, output))
         frame.name = FRAME
     both, where_lit = own.node(tree, JOURNEY_SURFACE), own.node(tree, GLINTS_WHERE_LIT)
     h.link(tree, own.node(tree, SUN).outputs[0], look_node.inputs["Sun Direction"])
@@ -220,7 +216,7 @@ def _ensure_nodes(tree, look_node):
     extra.name = UP_HELD
     # The balance corrects the sun's light (it was fitted to it): the sky's and the haze's, which
     # reach the shade too, are neither brightened where it lifts nor dimmed where it scales.
-    lit, lit_nodes = _sun_light(tree, normal[0].from_socket if normal else None, sun.outputs[0])
+    lit, where_lit, made = _glints_where_lit(tree, normal[0].from_socket if normal else None, sun.outputs[0])
     boosted = h.vector_math(tree, "SCALE", lit, label="Sun's Light × (Balance − 1)")
     boosted.name = SUN_BOOSTED
     h.link(tree, extra.outputs[0], boosted.inputs["Scale"])
@@ -237,22 +233,29 @@ def _ensure_nodes(tree, look_node):
                        inputs={"Strength": 1.0})
     h.link(tree, light.outputs[0], boost.inputs["Color"])
     light.name = BOOST_LIGHT
-    # Lit glints where the sun reaches: EEVEE's world light has no shadow, so facets in the shade
-    # mirrored the bright sky round the sun, which Cycles' dunes hide (sync() links the mix).
-    reach, reach_nodes = _sun_reach(tree, lit, tree.nodes[f"{SUN_LIGHT_PREFIX}N·L"].outputs["Value"])
-    where_lit = h.add_node(tree, "ShaderNodeMixShader", name=GLINTS_WHERE_LIT,
-                           label="Glints Where the Sun Reaches")
-    h.link(tree, reach, where_lit.inputs["Fac"])
-    h.link(tree, where_lit.outputs[0], scale.inputs[1])
+    h.link(tree, where_lit.outputs[0], scale.inputs[1])  # sync() links the mix's two sides
     both = h.add_node(tree, "ShaderNodeAddShader", name=BOTH)
     h.link(tree, scale.outputs[0], both.inputs[0])
     h.link(tree, boost.outputs[0], both.inputs[1])
     h.link(tree, both.outputs[0], output.inputs["Surface"])
     frame = h.frame(tree, "EEVEE: Balanced to Cycles", (sun, balance, down, clamped, scale, up, extra, color,
-                                                         *lit_nodes, boosted, kept, correction, light, boost,
-                                                         *reach_nodes, where_lit, both, output))
+                                                         *made, boosted, kept, correction, light, boost,
+                                                         both, output))
     frame.name = FRAME
     return output
+
+
+def _glints_where_lit(tree, normal, sun):
+    """Lit glints where the sun reaches: EEVEE's world light has no shadow, so facets in the shade
+    mirrored the bright sky round the sun, which Cycles' dunes hide. A Mix Shader by the share of
+    the sun's light that arrives (its two sides linked by the caller). Returns (the sun's light
+    socket, the mix, the nodes made)."""
+    lit, lit_nodes = _sun_light(tree, normal, sun)
+    reach, reach_nodes = _sun_reach(tree, lit, tree.nodes[f"{SUN_LIGHT_PREFIX}N·L"].outputs["Value"])
+    where_lit = h.add_node(tree, "ShaderNodeMixShader", name=GLINTS_WHERE_LIT,
+                           label="Glints Where the Sun Reaches")
+    h.link(tree, reach, where_lit.inputs["Fac"])
+    return lit, where_lit, (*lit_nodes, *reach_nodes, where_lit)
 
 
 def _sun_light(tree, normal, sun):

@@ -15,7 +15,7 @@ from bpy_extras import anim_utils
 from mathutils import Vector
 from mathutils.bvhtree import BVHTree
 
-from . import evaluation, units, walker_figure, walker_flutter, walker_gait, walker_wind
+from . import evaluation, shot, units, walker_figure, walker_flutter, walker_gait, walker_wind
 from . import ownership as own
 from .footprint_terrain import frame_list, sample_walker
 
@@ -36,7 +36,7 @@ def ensure_walker(scene, terrain, start, end, sway=SWAY):
     """The scene's stand-in walker and its path, made or updated (`sway`: the S's reach to either
     side, a share of its length). Returns (walker, path)."""
     path = own.scene_object(scene, own.WALK_PATH) or _new_path(scene)
-    fps = scene.render.fps / scene.render.fps_base
+    fps = shot.frames_per_second(scene)
     _shape_path(scene, path, terrain, units.to_units(scene, (end - start) / fps * WALK_SPEED),
                 units.to_units(scene, PATH_STEP), sway)
     walker = own.scene_object(scene, own.WALKER)

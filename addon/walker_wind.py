@@ -10,7 +10,7 @@ import math
 from ..core import scarf
 from ..node_groups import helper as h
 from ..node_groups import scarf_wind
-from . import compat, units, walker_figure
+from . import compat, shot, units, walker_figure
 
 MODIFIER = "Sandscape Scarf Wind"
 
@@ -40,7 +40,7 @@ def ensure(scene, walker, walk_speed, start, end):
     heading = walker_figure.TAIL_HEADING
     inputs = {"Wind": tuple(float(v) for v in scene.sandscape_atmosphere.wind),
               "Walk Speed": float(walk_speed), "Walk Start": float(start), "Walk End": float(end),
-              "Settle Frames": scarf.SETTLE_TIME * scene.render.fps / scene.render.fps_base,
+              "Settle Frames": scarf.SETTLE_TIME * shot.frames_per_second(scene),
               "Nape": tuple(float(v) * scale for v in walker_figure.tail_centre(0.0)),
               "Built Heading": math.atan2(heading[1], heading[0]),
               "Calm Speed": scarf.CALM_SPEED * scale}
