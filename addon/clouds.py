@@ -16,10 +16,11 @@ import math
 import bpy
 import numpy as np
 
+from ..core import cloud_shadows as shadow_twin
 from ..core import clouds as twin
 from ..node_groups import cloud_density, weather_map
 from ..node_groups import helper as h
-from . import cloud_grid, evaluation, units
+from . import cloud_grid, cloud_shadows, evaluation, units
 from . import ownership as own
 from .shot import camera_views, frames_per_second, reach_points
 
@@ -77,6 +78,30 @@ def layer_box(scene, s):
     return twin.layer_region(cameras, seen, s["reach"], fade), fade
 
 
+def twin_density(scene, s, image, done):
+    """The layer's extinction at frame 0 as the twin gives it: density_at(points (..., 3)); for a
+    grid, the twin's cloudiness at its voxels interpolated as Cycles does (between voxels the
+    exact density holds detail the grid does not). A painted map's coverage is read as the shader
+    reads it; its precipitation and type are the settings'."""
+    p = {**parameters(scene, s), "region": (*done["region"], done["fade"])}
+    if s["weather_source"] == "IMAGE":
+        cover_at = coverage_function(s, image)
+        p["cloud_type"] = 0.5 if p["cloud_type"] is None else p["cloud_type"]
+
+        def cloudiness(points):
+            return twin.shaped_cloudiness(points, p, cover_at(np.asarray(points)[..., :2]))
+    else:
+        def cloudiness(points):
+            return twin.cloudiness(points, p)
+    if s["evaluation"] != "GRID":
+        return lambda points: twin.density_from_cloudiness(cloudiness(points), p)
+    corner, _, counts = done["box"]
+    axes = [corner[axis] + np.arange(counts[axis]) * done["voxel"] for axis in range(3)]
+    voxels = cloudiness(np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1))
+    return lambda points: twin.density_from_cloudiness(
+        shadow_twin.trilinear(voxels, corner, done["voxel"], points), p)
+
+
 def shot_seconds(scene):
     fps = frames_per_second(scene)
     return scene.frame_start / fps, scene.frame_end / fps
@@ -87,6 +112,7 @@ def remove_layer(scene):
     if layer is not None:
         cloud_grid.remove_modifier(layer)
         own.remove_with_data(layer)
+    cloud_shadows.remove(scene)
 
 
 def ensure_layer(scene):
@@ -244,7 +270,8 @@ def plan(scene, s, image=None):
     wind = np.asarray(scene.sandscape_atmosphere.wind, np.float64)
     carried = twin.carried_region(region, wind, *shot_seconds(scene))  # frame-0 space over the shot
     cloudy = twin.has_cloud(carried, SAMPLES, coverage_function(s, image))
-    done = {"region": region, "fade": fade, "has_cloud": cloudy, "voxels": 0, "warning": None}
+    done = {"region": region, "fade": fade, "has_cloud": cloudy, "voxels": 0, "warning": None,
+            "carried": carried}
     if s["evaluation"] == "GRID":
         done["voxel"] = s["voxel"]
         done["box"] = cloud_grid.box_and_resolution(carried, low, high, done["voxel"])
@@ -314,5 +341,9 @@ def apply(scene, s, image=None, done=None):
                            "the layer needs them)")
             scene.cycles.volume_max_steps = needed
     layer.matrix_world.translation.z = 0.0
+    shadows = cloud_shadows.apply(scene, done["carried"], low, s["thickness"], s["step"],
+                                  twin_density(scene, s, image, done),
+                                  scene.sandscape_atmosphere.wind)
     warnings = [text for text in (done["warning"], clip_warning(scene, s)) if text]
-    return {**done, "layer": layer, "warning": "; ".join(warnings) or None, "changes": changes}
+    return {**done, "layer": layer, "warning": "; ".join(warnings) or None, "changes": changes,
+            "eevee_shadows": shadows}

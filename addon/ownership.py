@@ -21,6 +21,7 @@ TERRAIN_KEY = "sandscape_terrain"  # on footprint data: the terrain it belongs t
 
 # Kinds of objects
 SUN, DUST_VOLUME, CLOUDS = "sun", "dust_volume", "clouds"
+CLOUD_SHADOWS = "cloud_shadows"  # EEVEE's shadow of the clouds: an object, its material
 WALKER, WALK_PATH, WALKER_LIMB = "walker", "walk_path", "walker_limb"
 FOOTPRINTS, PATCH, PRINT_FRAME = "footprints", "footprint_patch", "print_frame"
 DUNES, DUNE_HORIZON = "dunes", "dune_horizon"
@@ -28,7 +29,7 @@ SCENERY = (DUNES,)  # ours, yet the scene's ground: counted where the scene's ge
 # Kinds of materials, images, worlds
 SAND, DUST, CLOUD_MATERIAL, CLOAK = "sand", "dust", "clouds", "cloak"
 CLOAK_TRIM, WRAPS = "walker_trim", "walker_wraps"  # the walker's golden trim; legs' and hands' cloth
-GLINT_NOISE, PRINT_MAP = "glint_noise", "print_map"
+GLINT_NOISE, PRINT_MAP, CLOUD_SHADOW_MAP = "glint_noise", "print_map", "cloud_shadow_map"
 SKY = "sky"
 CLOUD_GRID = "cloud_grid"  # the cloud layer's own geometry-nodes tree
 

@@ -69,6 +69,8 @@ class SANDSCAPE_OT_add_clouds(SceneSettings, SandscapeOperator, bpy.types.Operat
         depth = units.length_text(scene, done["region"][3] - done["region"][1])
         self.report({"INFO"}, f"Cloud layer '{done['layer'].name}': {values['cloud_type'].lower()}, coverage "
                     f"{values['coverage']:.2f}, {width} × {depth} of sky, {how}"
+                    + (f"; EEVEE's shadow of it: a {shadows['texels'][1]} × {shadows['texels'][0]} map"
+                       if (shadows := done.get("eevee_shadows")) else "")
                     + ("; changed: " + "; ".join(done["changes"]) if done["changes"] else ""))
         if done["warning"]:
             self.report({"WARNING"}, done["warning"])

@@ -235,12 +235,19 @@ def test_the_sidebar_says_which_engine_a_setting_reaches(sandscape):
     """Issue 27: where a setting reaches only Cycles (or EEVEE renders it otherwise), its section
     says so; the sand says what EEVEE renders of each look."""
     panels = sandscape.ui.panels
+    bpy.context.scene.render.engine = "CYCLES"
     seen = []
     for name in ("footprints", "atmosphere", "clouds"):
         layout = RecordingLayout()
         getattr(bpy.types, f"SANDSCAPE_PT_{name}").draw(types.SimpleNamespace(layout=layout), bpy.context)
         seen += [c[1] for c in layout.calls if c[0] == "label"]
     assert set(panels.ENGINE_NOTES.values()) <= set(seen)
+    assert panels.CLOUD_SHADOWS_IN_EEVEE not in seen  # Cycles shadows through the clouds
+    bpy.context.scene.render.engine = "BLENDER_EEVEE"
+    layout = RecordingLayout()
+    bpy.types.SANDSCAPE_PT_clouds.draw(types.SimpleNamespace(layout=layout), bpy.context)
+    assert ("label", panels.CLOUD_SHADOWS_IN_EEVEE) in [c[:2] for c in layout.calls]
+    bpy.context.scene.render.engine = "CYCLES"
     readback.uv_plane()
     for look in ("PHYSICAL", "JOURNEY"):
         assert bpy.ops.sandscape.add_sand_material(look=look) == {"FINISHED"}

@@ -207,6 +207,8 @@ class SANDSCAPE_PT_clouds(SandscapeSubPanel, bpy.types.Panel):
             layout.prop(settings, "map_scale")
         _sections(layout, settings, CLOUD_SECTIONS)
         layout.label(text="Wind: the atmosphere's (dust, ripples, clouds)", icon="INFO")
+        if context.scene.render.engine == "BLENDER_EEVEE":
+            layout.label(text=CLOUD_SHADOWS_IN_EEVEE, icon="INFO")
         layout.operator("sandscape.add_clouds", icon="OUTLINER_DATA_VOLUME")
 
 
@@ -225,6 +227,9 @@ class SANDSCAPE_PT_render(SandscapeSubPanel, bpy.types.Panel):
         row = layout.row(align=True)
         row.operator("sandscape.optimize_scene", text="List", icon="VIEWZOOM").dry_run = True
         row.operator("sandscape.optimize_scene", text="Optimize", icon="MODIFIER").dry_run = False
+
+
+CLOUD_SHADOWS_IN_EEVEE = "EEVEE: ground shadows from Add Clouds (again after turning the sun)"
 
 
 # Section heading -> the settings under it that do not reach Cycles and EEVEE alike (the others do).

@@ -1,0 +1,169 @@
+"""The cloud layer's shadow in EEVEE (core.cloud_shadows): one plane over the layer's box at its
+base, "Sandscape Cloud Shadows", seen by shadow rays only, whose EEVEE surface is opaque where
+the clouds above let less than half the sun's light through (a packed map of that light, made
+from the clouds' twin for the scene's sun when the clouds are added). Cycles sees it as fully
+transparent: it shadows through the volume itself. Built only for a scene that renders with
+EEVEE (Add Clouds again after switching engine, or after turning the sun); it drifts with the
+wind as the clouds do.
+"""
+
+import bpy
+import numpy as np
+
+from ..core import atmosphere as air_twin
+from ..core import cloud_shadows as twin
+from ..node_groups import helper as h
+from . import cloud_grid
+from . import ownership as own
+from .shot import frames_per_second
+from .sun_lamp import scene_sun, sun_angles
+
+MAP_NODE = "Sandscape Cloud Shadow Map"
+# The layer is opaque where the clouds let less than this through, clear elsewhere: EEVEE draws a
+# partly transparent caster's shadow through a fixed stochastic pattern unless the sun's shadow
+# Jitter redraws it every sample (a weight of 0.5 let 0.39 to 0.68 through, by the view; with
+# Jitter 0.52, at three times the demo frame's time here). The map keeps the light itself.
+HALF = 0.5
+LOWEST_SUN = 0.5  # degrees: below it the layer's shadow falls beyond any box and none is cast
+
+
+def wanted(scene):
+    return scene.render.engine == "BLENDER_EEVEE"
+
+
+def caster(scene):
+    return own.scene_object(scene, own.CLOUD_SHADOWS)
+
+
+def _map_image(material):
+    node = own.node(material.node_tree, MAP_NODE) if material is not None else None
+    return node.image if node is not None else None
+
+
+def remove(scene):
+    found = caster(scene)
+    if found is None:
+        return
+    image = _map_image(found.active_material)
+    cloud_grid.stop_drift(found)
+    own.remove_with_data(found)
+    if image is not None and image.users == 0:
+        bpy.data.images.remove(image)
+
+
+def to_sun(scene):
+    """Unit vector towards the scene's sun lamp as the scene evaluates it, or None (no sun, or
+    one too low to cast the layer's shadow anywhere near)."""
+    sun = scene_sun(scene)
+    if sun is None:
+        return None
+    elevation, azimuth = sun_angles(scene, sun)
+    if elevation < np.radians(LOWEST_SUN):
+        return None
+    return air_twin.sun_direction(elevation, azimuth)
+
+
+def _plane(box, height):
+    xmin, ymin, xmax, ymax = box
+    mesh = bpy.data.meshes.new("Sandscape Cloud Shadows")
+    mesh.from_pydata([(xmin, ymin, height), (xmax, ymin, height), (xmax, ymax, height), (xmin, ymax, height)],
+                     [], [(0, 1, 2, 3)])
+    uv = mesh.uv_layers.new(name="UVMap")
+    uv.data.foreach_set("uv", [0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0])
+    mesh.validate()
+    return mesh
+
+
+def _ensure_object(scene, box, height):
+    found = caster(scene)
+    mesh = _plane(box, height)
+    if found is None:
+        found = bpy.data.objects.new("Sandscape Cloud Shadows", mesh)
+        own.mark(found, own.OBJECT_KEY, own.CLOUD_SHADOWS)
+        scene.collection.objects.link(found)
+    else:
+        old = found.data
+        for material in old.materials:
+            mesh.materials.append(material)
+        found.data = mesh
+        if old.users == 0:
+            name = old.name
+            bpy.data.meshes.remove(old)
+            mesh.name = name
+    found.display_type = "BOUNDS"
+    # Seen by EEVEE's shadow maps only: never by the camera, a reflection or a bounce.
+    found.visible_camera = found.visible_diffuse = found.visible_glossy = False
+    found.visible_transmission = found.visible_volume_scatter = False
+    found.visible_shadow = True
+    return found
+
+
+def _ensure_image(found, weight):
+    rows, columns = weight.shape
+    image = _map_image(found.active_material)
+    if image is not None and tuple(image.size) != (columns, rows):
+        image = None  # a new one; the old goes with the material's rebuild below
+    if image is None:
+        image = own.mark(bpy.data.images.new("Sandscape Cloud Shadows", columns, rows, alpha=False),
+                         own.IMAGE_KEY, own.CLOUD_SHADOW_MAP)
+        image.colorspace_settings.name = "Non-Color"  # before the pixels: it regenerates them
+    rgba = np.repeat(weight[..., None], 4, axis=-1).astype(np.float32)
+    rgba[..., 3] = 1.0
+    image.pixels.foreach_set(rgba.ravel())
+    image.pack()
+    return image
+
+
+def _build_material(found, image):
+    material = own.slot_material(found, own.CLOUD_SHADOWS)
+    if material is None:
+        material = own.mark(bpy.data.materials.new("Sandscape Cloud Shadows"), own.MATERIAL_KEY,
+                            own.CLOUD_SHADOWS)
+        found.data.materials.clear()
+        found.data.materials.append(material)
+    old = _map_image(material)
+    tree = material.node_tree
+    tree.nodes.clear()
+    texture = h.add_node(tree, "ShaderNodeTexImage", name=MAP_NODE, label="Light Let Through (EEVEE)",
+                         image=image, interpolation="Linear", extension="EXTEND")
+    channel = h.add_node(tree, "ShaderNodeSeparateColor", name="Sandscape Cloud Shadow Channel")
+    h.link(tree, texture.outputs["Color"], channel.inputs["Color"])
+    opaque = h.add_node(tree, "ShaderNodeBsdfDiffuse", name="Sandscape Cloud Shadow Opaque",
+                        inputs={"Color": (0.0, 0.0, 0.0, 1.0)})
+    clear = h.add_node(tree, "ShaderNodeBsdfTransparent", name="Sandscape Cloud Shadow Clear")
+    clear_where = h.math(tree, "GREATER_THAN", channel.outputs["Red"], HALF, label="Clear Where Over Half")
+    clear_where.name = "Sandscape Cloud Shadow Threshold"
+    blend = h.add_node(tree, "ShaderNodeMixShader", name="Sandscape Cloud Shadow Blend", label="Transparent")
+    h.link(tree, clear_where.outputs[0], blend.inputs["Fac"])
+    h.link(tree, opaque.outputs[0], blend.inputs[1])
+    h.link(tree, clear.outputs[0], blend.inputs[2])
+    eevee = h.add_node(tree, "ShaderNodeOutputMaterial", name="Sandscape EEVEE Output", target="EEVEE")
+    h.link(tree, blend.outputs[0], eevee.inputs["Surface"])
+    cycles_clear = h.add_node(tree, "ShaderNodeBsdfTransparent", name="Sandscape Cloud Shadow Cycles")
+    cycles = h.add_node(tree, "ShaderNodeOutputMaterial", name="Sandscape Cycles Output", target="CYCLES")
+    h.link(tree, cycles_clear.outputs[0], cycles.inputs["Surface"])
+    h.arrange(tree, set_widths=False)
+    material.surface_render_method = "DITHERED"
+    material.use_transparent_shadow = True
+    if old is not None and old is not image and old.users == 0:
+        bpy.data.images.remove(old)
+    return material
+
+
+def apply(scene, box, base, thickness, step, density_at, wind):
+    """Build or update the shadow layer over box (xmin, ymin, xmax, ymax, in the clouds' frame-0
+    space) for the layer from `base` up `thickness`, whose extinction is density_at(points) at
+    frame 0; remove it where the scene does not render with EEVEE or has no sun high enough.
+    Returns what was made (texels, steps, the share of the box in shadow) or None."""
+    direction = to_sun(scene) if wanted(scene) else None
+    if direction is None:
+        remove(scene)
+        return None
+    steps = twin.steps_for(thickness, direction, step)
+    light = twin.transmittance(density_at, box, base, thickness, direction, steps)
+    found = _ensure_object(scene, box, base)
+    image = _ensure_image(found, light)
+    _build_material(found, image)
+    cloud_grid.drift_with_wind(found, wind, frames_per_second(scene))
+    found["sandscape_sun_direction"] = [float(v) for v in direction]  # what the map was made for
+    return {"object": found, "texels": light.shape, "steps": steps, "shaded": float(np.mean(light < HALF))}

@@ -1,0 +1,74 @@
+"""The cloud layer's shadow as EEVEE can cast it. EEVEE's volumes shadow no surface, so a layer of
+the clouds' own light-let-through is laid at their base: for each point of the base, the light
+that crosses the layer towards the sun, exp(-optical depth along the sun's ray), a texture on a
+plane that only shadow rays see (addon/cloud_shadows.py). Cycles shadows the ground through the
+volume itself.
+"""
+
+import numpy as np
+
+MAX_TEXELS = 192  # along the longer side of the layer's box: the shadows' edges blur over a texel
+MAX_STEPS = 48  # along the sun's ray through the layer (a 6-degree sun's crosses 10 thicknesses)
+
+
+def unit(vector):
+    vector = np.asarray(vector, np.float64)
+    return vector / np.linalg.norm(vector)
+
+
+def texel_centres(box, texels=MAX_TEXELS):
+    """x and y of the texel centres over box (xmin, ymin, xmax, ymax), rows = y: square-ish
+    texels, `texels` along the longer side."""
+    xmin, ymin, xmax, ymax = box
+    width, depth = xmax - xmin, ymax - ymin
+    columns = max(2, int(round(texels * min(1.0, width / depth))))
+    rows = max(2, int(round(texels * min(1.0, depth / width))))
+    xs = xmin + (np.arange(columns) + 0.5) * width / columns
+    ys = ymin + (np.arange(rows) + 0.5) * depth / rows
+    return np.meshgrid(xs, ys)
+
+
+def steps_for(thickness, to_sun, step):
+    """Ray-marching steps through the layer towards the sun: `step` long, at most MAX_STEPS."""
+    length = thickness / unit(to_sun)[2]
+    return int(min(max(np.ceil(length / max(step, 1e-9)), 1), MAX_STEPS))
+
+
+def transmittance(density_at, box, base, thickness, to_sun, steps, texels=MAX_TEXELS):
+    """exp(-optical depth) from each texel of the layer's base (rows = y) towards the sun, through
+    `thickness` of the density density_at(points (..., 3)) (extinction per unit length): midpoint
+    steps along the ray. The sun must be above the horizon."""
+    to_sun = unit(to_sun)
+    if to_sun[2] <= 0.0:
+        raise ValueError("the sun is not above the horizon: the layer casts no shadow")
+    xs, ys = texel_centres(box, texels)
+    length = thickness / to_sun[2]
+    step = length / steps
+    depth = np.zeros_like(xs)
+    for k in range(steps):
+        t = (k + 0.5) * step
+        points = np.stack([xs + to_sun[0] * t, ys + to_sun[1] * t, np.full_like(xs, base + to_sun[2] * t)],
+                          axis=-1)
+        depth += np.asarray(density_at(points), np.float64) * step
+    return np.exp(-depth)
+
+
+
+def trilinear(values, corner, voxel, points):
+    """values (nx, ny, nz), sampled at corner + index x voxel, interpolated at points (..., 3) as a
+    volume grid is: none outside the grid's box."""
+    values = np.asarray(values, np.float64)
+    shape = np.array(values.shape)
+    where = (np.asarray(points, np.float64) - np.asarray(corner, np.float64)) / voxel
+    inside = np.all((where >= 0.0) & (where <= shape - 1), axis=-1)
+    where = np.clip(where, 0.0, shape - 1)
+    low = np.minimum(np.floor(where).astype(int), shape - 2)
+    frac = where - low
+    total = np.zeros(where.shape[:-1])
+    for corner_index in np.ndindex(2, 2, 2):
+        weight = np.ones(where.shape[:-1])
+        for axis, side in enumerate(corner_index):
+            weight = weight * (frac[..., axis] if side else 1.0 - frac[..., axis])
+        i, j, k = (low[..., axis] + side for axis, side in enumerate(corner_index))
+        total += weight * values[i, j, k]
+    return np.where(inside, total, 0.0)

@@ -1,0 +1,128 @@
+"""The clouds' shadow on the ground in EEVEE, whose volumes shadow no surface: a plane at the
+layer's base that only shadow rays see, opaque where the twin says the layer lets less than half
+the sun's light through (core.cloud_shadows). Checked against exp(-sigma d), and against Cycles'
+shadow through the volume on the same ground.
+"""
+
+import math
+
+import bpy
+import numpy as np
+import pytest
+from test_clouds import UP_SIZE, black_sky_and_point_sun
+
+from core import cloud_shadows as twin
+from devtools import operators, readback, scenes
+
+SHADOW_SIZE = 64  # pixels of the ground seen from above
+# EEVEE against Cycles on 625 m pixels: EEVEE's all-or-nothing shadow against Cycles' share, and
+# both engines' noise, differ at the clouds' edges pixel by pixel (0.078 when written); blurred
+# over 3x3 pixels the shadows agree.
+CYCLES_TOLERANCE = 0.05  # mean |EEVEE - Cycles| of the light let through, both blurred 3x3
+CORRELATION_FLOOR = 0.9  # of the two pictures of the light let through, pixel by pixel
+MEAN_TOLERANCE = 0.02  # of the light let through over the ground
+SHARE_TOLERANCE = 0.04  # the share of ground in shadow (less than half the light)
+
+
+@pytest.mark.parametrize("elevation_degrees", [45.0, 6.0])
+def test_the_map_lets_through_exp_minus_sigma_d(elevation_degrees):
+    """A uniform layer: every texel lets exp(-sigma d / sin e) through, d its thickness."""
+    elevation = math.radians(elevation_degrees)
+    to_sun = (0.0, math.cos(elevation), math.sin(elevation))
+    sigma, thickness = 2e-4, 1200.0
+    steps = twin.steps_for(thickness, to_sun, 200.0)
+    light = twin.transmittance(lambda p: np.full(p.shape[:-1], sigma), (0, 0, 4000, 2000), 1000.0, thickness,
+                               to_sun, steps, texels=32)
+    assert light.shape == (16, 32)
+    assert light == pytest.approx(math.exp(-sigma * thickness / math.sin(elevation)), rel=1e-9)
+
+
+def _sun_scene(scene, elevation_degrees):
+    """Ground seen from above under the artist's sun, as wide as the sky's sun disc (Add
+    Atmosphere's; its shadow Jitter off, Blender's default), and a black sky."""
+    bpy.ops.mesh.primitive_plane_add(size=3 * UP_SIZE)
+    scenes.camera("ORTHO", location=(0.0, 0.0, 500.0), ortho_scale=UP_SIZE)
+    scene.camera.data.clip_end = 1e6
+    lamp = black_sky_and_point_sun(scene)
+    lamp.rotation_euler = (math.radians(90.0 - elevation_degrees), 0.0, math.radians(30.0))
+    lamp.data.angle = 0.009512044  # addon.sun_lamp.SKY_SUN_SIZE
+    lamp.data.use_shadow_jitter = False
+    scene.render.resolution_x = scene.render.resolution_y = SHADOW_SIZE
+    return lamp
+
+
+def _blurred(light):
+    """The 3x3 box mean, the frame's edge pixels dropped."""
+    return sum(np.roll(np.roll(light, i, 0), j, 1) for i in (-1, 0, 1) for j in (-1, 0, 1))[1:-1, 1:-1] / 9.0
+
+
+def _caster(scene):
+    return next((o for o in scene.objects if o.get("sandscape_object") == "cloud_shadows"), None)
+
+
+def test_eevee_shades_the_ground_under_the_clouds_as_cycles_does(eevee_scene):
+    """Ground seen from above under Add Clouds' grid and a sun at 40 degrees, a black sky: the
+    light let through, pixel by pixel, in EEVEE (through the shadow layer) against Cycles (through
+    the volume). Without the layer EEVEE lets everything through."""
+    scene = eevee_scene
+    scene.eevee.taa_render_samples = 16
+    _sun_scene(scene, 40.0)
+    values = {"coverage": 0.5, "seed": 5, "map_scale": 2000.0, "reach": 1.0, "voxel": 200.0}
+    lit_eevee = readback.render(scene)[..., 0]
+    assert bpy.ops.sandscape.add_clouds(**values) == {"FINISHED"}
+    caster = _caster(scene)
+    assert caster is not None and not caster.visible_camera and caster.visible_shadow
+    eevee = readback.render(scene)[..., 0] / lit_eevee
+    caster.hide_render = True
+    bare = readback.render(scene)[..., 0] / lit_eevee
+    caster.hide_render = False
+    readback.cycles_scene(scene, (SHADOW_SIZE, SHADOW_SIZE), samples=4)
+    scene.cycles.volume_biased = True  # ray marching, as the quality presets set it
+    scene.cycles.volume_bounces = scene.cycles.max_bounces = 0
+    layer = next(o for o in scene.objects if o.get("sandscape_object") == "clouds")
+    layer.hide_render = True
+    lit_cycles = readback.render(scene)[..., 0]
+    layer.hide_render = False
+    cycles = readback.render(scene)[..., 0] / lit_cycles
+    error = np.abs(_blurred(eevee) - _blurred(cycles))
+    correlation = np.corrcoef(eevee.ravel(), cycles.ravel())[0, 1]
+    print(f"cloud shadows: EEVEE against Cycles, 3x3-blurred mean |error| {error.mean():.3f}, per pixel "
+          f"{np.abs(eevee - cycles).mean():.3f}, correlation {correlation:.3f}; ground in shadow "
+          f"{(eevee < 0.5).mean():.3f} / {(cycles < 0.5).mean():.3f}, light let through "
+          f"{eevee.mean():.3f} / {cycles.mean():.3f}")
+    assert np.isfinite(eevee).all()
+    assert bare.mean() > 0.95  # EEVEE's volume shadows no surface: the layer does
+    assert 0.2 < (cycles < 0.5).mean() < 0.8
+    assert correlation >= CORRELATION_FLOOR
+    assert error.mean() <= CYCLES_TOLERANCE
+    assert eevee.mean() == pytest.approx(cycles.mean(), abs=MEAN_TOLERANCE)
+    assert (eevee < 0.5).mean() == pytest.approx((cycles < 0.5).mean(), abs=SHARE_TOLERANCE)
+
+
+def _shadow_things():
+    return (sum(o.get("sandscape_object") == "cloud_shadows" for o in bpy.data.objects),
+            sum(m.get("sandscape_material") == "cloud_shadows" for m in bpy.data.materials),
+            sum(i.get("sandscape_image") == "cloud_shadow_map" for i in bpy.data.images))
+
+
+def test_the_shadow_layer_is_made_for_eevee_once_and_goes_with_it():
+    """Only a scene that renders with EEVEE gets the layer; Add Clouds again updates it (one
+    object, material and map, packed); back in Cycles it goes, leaving nothing behind."""
+    scene = bpy.context.scene
+    _sun_scene(scene, 40.0)
+    values = {"coverage": 0.5, "seed": 5, "map_scale": 2000.0, "reach": 1.0, "voxel": 400.0}
+    scene.render.engine = "CYCLES"
+    assert bpy.ops.sandscape.add_clouds(**values) == {"FINISHED"}
+    assert _shadow_things() == (0, 0, 0)
+    scene.render.engine = "BLENDER_EEVEE"
+    result, reports = operators.run_execute("sandscape.add_clouds", **values)
+    assert result == {"FINISHED"}
+    assert _shadow_things() == (1, 1, 1)
+    assert any("INFO" in kinds and "EEVEE's shadow of it" in text for kinds, text in reports)
+    image = _caster(scene).active_material.node_tree.nodes["Sandscape Cloud Shadow Map"].image
+    assert image.packed_file is not None and image.colorspace_settings.name == "Non-Color"
+    assert bpy.ops.sandscape.add_clouds(**{**values, "coverage": 0.6}) == {"FINISHED"}
+    assert _shadow_things() == (1, 1, 1)
+    scene.render.engine = "CYCLES"
+    assert bpy.ops.sandscape.add_clouds(**values) == {"FINISHED"}
+    assert _shadow_things() == (0, 0, 0)
