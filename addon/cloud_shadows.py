@@ -82,14 +82,7 @@ def _ensure_object(scene, box, height):
         own.mark(found, own.OBJECT_KEY, own.CLOUD_SHADOWS)
         scene.collection.objects.link(found)
     else:
-        old = found.data
-        for material in old.materials:
-            mesh.materials.append(material)
-        found.data = mesh
-        if old.users == 0:
-            name = old.name
-            bpy.data.meshes.remove(old)
-            mesh.name = name
+        own.replace_mesh(found, mesh)
     found.display_type = "BOUNDS"
     # Seen by EEVEE's shadow maps only: never by the camera, a reflection or a bounce.
     found.visible_camera = found.visible_diffuse = found.visible_glossy = False

@@ -96,6 +96,19 @@ def remove_with_data(obj):
         bpy.data.materials.remove(material)
 
 
+def replace_mesh(obj, mesh):
+    """Give our object a new mesh, with the old one's materials and name (running an operator
+    again keeps "Sandscape Clouds", not "….001"); the old one goes when nothing else uses it."""
+    old = obj.data
+    for material in old.materials:
+        mesh.materials.append(material)
+    obj.data = mesh
+    if old.users == 0:
+        name = old.name
+        bpy.data.meshes.remove(old)
+        mesh.name = name
+
+
 def not_editable(block):
     """Why a data-block cannot take our changes (linked, overridden, not editable), or None.
 

@@ -2,7 +2,8 @@
 the mean display colour in each engine with EEVEE's brightness, saturation and hue against
 Cycles'. Regions come from rays cast through the pixel centres, not from the pictures: sky (no
 surface), the walker, sand in sun and in shade (a ray to the sun from the hit point), near and
-far. Both engines get the compositor built for them (Add Post Effects after the switch), and the
+far. Both engines get the compositor built for them (Add Post Effects after the switch), EEVEE
+the clouds' shadow layer (Add Clouds after the first switch; Cycles sees it as clear), and the
 side-by-side pictures are written to the output folder (docs/eevee_demo.png with --picture).
 EEVEE runs on software OpenGL here: its times are a CPU's, not a GPU's.
 Appends the table to bench/RESULTS.md.
@@ -82,6 +83,9 @@ def main(argv=None):
         for engine in ("CYCLES", "BLENDER_EEVEE"):
             scene.render.engine = engine
             assert bpy.ops.sandscape.add_post_effects() == {"FINISHED"}  # the tree this engine's passes feed
+            if engine == "BLENDER_EEVEE" and not any(o.get("sandscape_object") == "cloud_shadows"
+                                                     for o in scene.objects):
+                assert bpy.ops.sandscape.add_clouds() == {"FINISHED"}  # their shadow, as in an EEVEE scene
             if engine == "BLENDER_EEVEE":
                 readback.render_display(scene, out / f"warm-{frame}.png")  # shaders compiled
             started = time.perf_counter()

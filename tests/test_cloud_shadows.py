@@ -126,3 +126,32 @@ def test_the_shadow_layer_is_made_for_eevee_once_and_goes_with_it():
     scene.render.engine = "CYCLES"
     assert bpy.ops.sandscape.add_clouds(**values) == {"FINISHED"}
     assert _shadow_things() == (0, 0, 0)
+
+
+def test_the_shadow_layer_drifts_with_the_clouds_in_plain_blender(tmp_path):
+    """Saved and opened with Sandscape off and Python auto-run off, as on a farm: the plane moves
+    with the clouds' grid at a later frame, and its map is packed in the file."""
+    from devtools import session
+
+    scene = bpy.context.scene
+    _sun_scene(scene, 40.0)
+    scene.sandscape_atmosphere.wind = (4.0, -2.0, 0.0)
+    scene.render.engine = "BLENDER_EEVEE"
+    assert bpy.ops.sandscape.add_clouds(coverage=0.5, seed=5, map_scale=2000.0, reach=1.0,
+                                        voxel=400.0) == {"FINISHED"}
+    path = tmp_path / "shadows.blend"
+    bpy.ops.wm.save_as_mainfile(filepath=str(path))
+    with session.extension_off():
+        bpy.ops.wm.open_mainfile(filepath=str(path), load_ui=False)
+        scene = bpy.context.scene
+        scene.frame_set(100)
+        caster = _caster(scene)
+        layer = next(o for o in scene.objects if o.get("sandscape_object") == "clouds")
+        seconds = 100 / (scene.render.fps / scene.render.fps_base)
+        drifted = (4.0 * seconds, -2.0 * seconds)
+        assert tuple(caster.matrix_world.translation)[:2] == pytest.approx(drifted, abs=1e-3)
+        assert tuple(caster.matrix_world.translation) == pytest.approx(tuple(layer.matrix_world.translation))
+        image = caster.active_material.node_tree.nodes["Sandscape Cloud Shadow Map"].image
+        assert image.packed_file is not None
+        light = np.array(image.pixels[:]).reshape(image.size[1], image.size[0], 4)[..., 0]
+        assert 0.2 < (light < 0.5).mean() < 0.9  # the clouds' shadows, not a blank map
