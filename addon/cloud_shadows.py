@@ -24,6 +24,7 @@ MAP_NODE = "Sandscape Cloud Shadow Map"
 # Jitter redraws it every sample (a weight of 0.5 let 0.39 to 0.68 through, by the view; with
 # Jitter 0.52, at three times the demo frame's time here). The map keeps the light itself.
 HALF = 0.5
+STALE_COSINE = 0.99995  # made for a sun over about half a degree from the scene's: remade
 LOWEST_SUN = 0.5  # degrees: below it the layer's shadow falls beyond any box and none is cast
 
 
@@ -51,16 +52,34 @@ def remove(scene):
         bpy.data.images.remove(image)
 
 
-def to_sun(scene):
-    """Unit vector towards the scene's sun lamp as the scene evaluates it, or None (no sun, or
-    one too low to cast the layer's shadow anywhere near)."""
+def to_sun(scene, evaluated=True):
+    """Unit vector towards the scene's sun lamp as the scene evaluates it (else as its matrix
+    stands: a panel's draw evaluates nothing), or None (no sun, or one too low to cast the
+    layer's shadow anywhere near)."""
     sun = scene_sun(scene)
     if sun is None:
         return None
-    elevation, azimuth = sun_angles(scene, sun)
+    if evaluated:
+        elevation, azimuth = sun_angles(scene, sun)
+    else:
+        axis = np.asarray(sun.matrix_world.to_3x3().col[2], np.float64)
+        axis = axis / max(np.linalg.norm(axis), 1e-12)
+        elevation, azimuth = np.arcsin(np.clip(axis[2], -1.0, 1.0)), np.arctan2(axis[0], axis[1])
     if elevation < np.radians(LOWEST_SUN):
         return None
     return air_twin.sun_direction(elevation, azimuth)
+
+
+def stale(scene, evaluated=True):
+    """True when the scene renders with EEVEE and its cloud shadows were made for another sun
+    (or none were made for a layer that is there): Add Clouds would remake them."""
+    if not wanted(scene) or own.scene_object(scene, own.CLOUDS) is None:
+        return False
+    found, direction = caster(scene), to_sun(scene, evaluated)
+    if found is None or direction is None:
+        return (found is None) != (direction is None)
+    made_for = np.asarray(found.get("sandscape_sun_direction", (0.0, 0.0, 0.0)), np.float64)
+    return float(np.dot(made_for, direction)) < STALE_COSINE
 
 
 def _plane(box, height):
@@ -118,7 +137,7 @@ def _build_material(found, image):
     tree = material.node_tree
     tree.nodes.clear()
     texture = h.add_node(tree, "ShaderNodeTexImage", name=MAP_NODE, label="Light Let Through (EEVEE)",
-                         image=image, interpolation="Linear", extension="EXTEND")
+                         image=image, interpolation="Cubic", extension="EXTEND")
     channel = h.add_node(tree, "ShaderNodeSeparateColor", name="Sandscape Cloud Shadow Channel")
     h.link(tree, texture.outputs["Color"], channel.inputs["Color"])
     opaque = h.add_node(tree, "ShaderNodeBsdfDiffuse", name="Sandscape Cloud Shadow Opaque",
@@ -139,7 +158,9 @@ def _build_material(found, image):
     material.surface_render_method = "DITHERED"
     material.use_transparent_shadow = True
     if old is not None and old is not image and old.users == 0:
+        name = old.name
         bpy.data.images.remove(old)
+        image.name = name  # not "….001"
     return material
 
 

@@ -300,6 +300,21 @@ def clip_warning(scene, s):
             f"{units.length_text(scene, needed)} to see the clouds out to Reach")
 
 
+def refresh_shadows(scene):
+    """Remake EEVEE's cloud shadows for the scene's sun as it is now (after Add Atmosphere turned
+    it), leaving the layer as it is; returns what was made (None: no layer, or not EEVEE)."""
+    layer = own.scene_object(scene, own.CLOUDS)
+    if layer is None or not cloud_shadows.wanted(scene):
+        return None
+    s = scene_settings(scene)
+    image = bpy.data.images.get(s["weather_image"]) if s["weather_source"] == "IMAGE" else None
+    if s["weather_source"] == "IMAGE" and image is None:
+        return None
+    done = plan(scene, s, image)
+    return cloud_shadows.apply(scene, done["carried"], s["base"], s["thickness"], s["step"],
+                               twin_density(scene, s, image, done), scene.sandscape_atmosphere.wind)
+
+
 def apply(scene, s, image=None, done=None):
     """Build or update the layer from settings s (a dict, scene units); returns what was done."""
     low, high = s["base"], s["base"] + s["thickness"]

@@ -4,7 +4,7 @@ import math
 
 import bpy
 
-from ..addon import atmosphere, ownership, units
+from ..addon import atmosphere, cloud_shadows, clouds, ownership, units
 from ..addon.settings import SandscapeAtmosphereSettings
 from ..core import atmosphere as air
 from .base import SandscapeOperator, editable_problem, value_problem
@@ -75,6 +75,12 @@ class SANDSCAPE_OT_add_atmosphere(SandscapeOperator, bpy.types.Operator):
             return self.fail(problem)
         done = atmosphere.apply(scene, settings)
         self.report({"INFO"}, report_line(scene, settings, done))
+        if cloud_shadows.stale(scene):  # made for the sun as it was
+            if clouds.refresh_shadows(scene):
+                self.report({"INFO"}, "EEVEE's cloud shadows remade for this sun")
+            elif cloud_shadows.to_sun(scene) is None:
+                self.report({"INFO"}, f"EEVEE's cloud shadows removed: the sun is under "
+                            f"{cloud_shadows.LOWEST_SUN}° up")
         return {"FINISHED"}
 
 

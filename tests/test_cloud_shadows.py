@@ -5,6 +5,7 @@ shadow through the volume on the same ground.
 """
 
 import math
+import types
 
 import bpy
 import numpy as np
@@ -155,3 +156,40 @@ def test_the_shadow_layer_drifts_with_the_clouds_in_plain_blender(tmp_path):
         assert image.packed_file is not None
         light = np.array(image.pixels[:]).reshape(image.size[1], image.size[0], 4)[..., 0]
         assert 0.2 < (light < 0.5).mean() < 0.9  # the clouds' shadows, not a blank map
+
+
+def test_turning_the_sun_remakes_the_shadows_or_says_so(sandscape):
+    """Add Atmosphere turning the sun remakes EEVEE's cloud shadows for it (reported); a sun
+    turned by hand makes the Clouds section say they are out of date; a sun under half a degree
+    takes them away."""
+    from test_ui import RecordingLayout
+
+    scene = bpy.context.scene
+    bpy.ops.mesh.primitive_plane_add(size=3 * UP_SIZE)
+    scenes.camera("ORTHO", location=(0.0, 0.0, 500.0), ortho_scale=UP_SIZE).data.clip_end = 1e6
+    scene.render.engine = "BLENDER_EEVEE"
+    air = scene.sandscape_atmosphere
+    air.sun_elevation, air.sun_azimuth = math.radians(40.0), math.radians(30.0)
+    assert bpy.ops.sandscape.add_atmosphere() == {"FINISHED"}
+    assert bpy.ops.sandscape.add_clouds(coverage=0.5, seed=5, map_scale=2000.0, reach=1.0,
+                                        voxel=400.0) == {"FINISHED"}
+    shadows = sandscape.addon.cloud_shadows
+    assert not shadows.stale(scene)
+
+    def made_for():
+        return np.array(list(_caster(scene)["sandscape_sun_direction"]))
+
+    first = made_for()
+    air.sun_elevation, air.sun_azimuth = math.radians(25.0), math.radians(240.0)
+    result, reports = operators.run_execute("sandscape.add_atmosphere")
+    assert result == {"FINISHED"} and ("remade for this sun" in " ".join(text for _, text in reports))
+    assert made_for() @ shadows.to_sun(scene) > 0.99999 and made_for() @ first < 0.9
+    sun = next(o for o in scene.objects if o.get("sandscape_object") == "sun")
+    sun.rotation_euler[0] += math.radians(10.0)  # turned by hand
+    bpy.context.view_layer.update()
+    layout = RecordingLayout()
+    bpy.types.SANDSCAPE_PT_clouds.draw(types.SimpleNamespace(layout=layout), bpy.context)
+    assert ("label", sandscape.ui.panels.CLOUD_SHADOWS_STALE) in [c[:2] for c in layout.calls]
+    air.sun_elevation = math.radians(0.2)
+    result, reports = operators.run_execute("sandscape.add_atmosphere")
+    assert _caster(scene) is None and any("removed" in text for _, text in reports)

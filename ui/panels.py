@@ -4,7 +4,7 @@ poll() allows."""
 
 import bpy
 
-from ..addon import atmosphere, dunes, rig_feet, sand, sand_eevee
+from ..addon import atmosphere, cloud_shadows, dunes, rig_feet, sand, sand_eevee
 
 
 class SandscapeTab:
@@ -207,7 +207,9 @@ class SANDSCAPE_PT_clouds(SandscapeSubPanel, bpy.types.Panel):
             layout.prop(settings, "map_scale")
         _sections(layout, settings, CLOUD_SECTIONS)
         layout.label(text="Wind: the atmosphere's (dust, ripples, clouds)", icon="INFO")
-        if context.scene.render.engine == "BLENDER_EEVEE":
+        if cloud_shadows.stale(context.scene, evaluated=False):
+            layout.label(text=CLOUD_SHADOWS_STALE, icon="ERROR")
+        elif context.scene.render.engine == "BLENDER_EEVEE":
             layout.label(text=CLOUD_SHADOWS_IN_EEVEE, icon="INFO")
         layout.operator("sandscape.add_clouds", icon="OUTLINER_DATA_VOLUME")
 
@@ -229,7 +231,8 @@ class SANDSCAPE_PT_render(SandscapeSubPanel, bpy.types.Panel):
         row.operator("sandscape.optimize_scene", text="Optimize", icon="MODIFIER").dry_run = False
 
 
-CLOUD_SHADOWS_IN_EEVEE = "EEVEE: ground shadows from Add Clouds (again after turning the sun)"
+CLOUD_SHADOWS_IN_EEVEE = "EEVEE: the clouds' ground shadows from Add Clouds"
+CLOUD_SHADOWS_STALE = "EEVEE's cloud shadows are out of date (the sun moved): Add Clouds again"
 
 
 # Section heading -> the settings under it that do not reach Cycles and EEVEE alike (the others do).
