@@ -1,8 +1,8 @@
-"""The cloud layer's shadow in EEVEE (core.cloud_shadows): one plane over the layer's box at its
-base, "Sandscape Cloud Shadows", seen by shadow rays only, whose EEVEE surface is opaque where
-the clouds above let less than half the sun's light through (a packed map of that light, made
-from the clouds' twin for the scene's sun when the clouds are added). Cycles sees it as fully
-transparent: it shadows through the volume itself. Built only for a scene that renders with
+"""The cloud layer's shadow in EEVEE (core.cloud_shadows): one mesh at the layer's base, "Sandscape
+Cloud Shadows", seen by shadow rays only, covering where the clouds above let less than half the
+sun's light through (outlined from a map of that light, made from the clouds' twin for the
+scene's sun when the clouds are added). Opaque in EEVEE; Cycles sees it as fully transparent: it
+shadows through the volume itself. Built only for a scene that renders with
 EEVEE (Add Clouds again after switching engine, or after turning the sun); it drifts with the
 wind as the clouds do.
 """
@@ -18,11 +18,11 @@ from . import ownership as own
 from .shot import frames_per_second
 from .sun_lamp import scene_sun, sun_angles
 
-MAP_NODE = "Sandscape Cloud Shadow Map"
-# The layer is opaque where the clouds let less than this through, clear elsewhere: EEVEE draws a
+# The mesh covers where the clouds let less than this through: all or nothing, as EEVEE draws a
 # partly transparent caster's shadow through a fixed stochastic pattern unless the sun's shadow
 # Jitter redraws it every sample (a weight of 0.5 let 0.39 to 0.68 through, by the view; with
-# Jitter 0.52, at three times the demo frame's time here). The map keeps the light itself.
+# Jitter 0.52, at three times the demo frame's time here), and a transparent caster over the
+# whole sky cost the demo frame in EEVEE 2.5 times its time; an opaque mesh costs little.
 HALF = 0.5
 STALE_COSINE = 0.99995  # made for a sun over about half a degree from the scene's: remade
 LOWEST_SUN = 0.5  # degrees: below it the layer's shadow falls beyond any box and none is cast
@@ -36,20 +36,12 @@ def caster(scene):
     return own.scene_object(scene, own.CLOUD_SHADOWS)
 
 
-def _map_image(material):
-    node = own.node(material.node_tree, MAP_NODE) if material is not None else None
-    return node.image if node is not None else None
-
-
 def remove(scene):
     found = caster(scene)
     if found is None:
         return
-    image = _map_image(found.active_material)
     cloud_grid.stop_drift(found)
     own.remove_with_data(found)
-    if image is not None and image.users == 0:
-        bpy.data.images.remove(image)
 
 
 def to_sun(scene, evaluated=True):
@@ -82,27 +74,24 @@ def stale(scene, evaluated=True):
     return float(np.dot(made_for, direction)) < STALE_COSINE
 
 
-def _plane(box, height):
-    xmin, ymin, xmax, ymax = box
+def _mesh(light, box, height):
+    """The shaded ground's polygons (core.cloud_shadows.shadow_polygons) at the layer's base."""
+    vertices, polygons = twin.shadow_polygons(twin.smoothed(light), box, HALF)
     mesh = bpy.data.meshes.new("Sandscape Cloud Shadows")
-    mesh.from_pydata([(xmin, ymin, height), (xmax, ymin, height), (xmax, ymax, height), (xmin, ymax, height)],
-                     [], [(0, 1, 2, 3)])
-    uv = mesh.uv_layers.new(name="UVMap")
-    uv.data.foreach_set("uv", [0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0])
+    mesh.from_pydata([(x, y, height) for x, y in vertices], [], polygons)
     mesh.validate()
     return mesh
 
 
-def _ensure_object(scene, box, height):
+def _ensure_object(scene, mesh):
     found = caster(scene)
-    mesh = _plane(box, height)
     if found is None:
         found = bpy.data.objects.new("Sandscape Cloud Shadows", mesh)
         own.mark(found, own.OBJECT_KEY, own.CLOUD_SHADOWS)
         scene.collection.objects.link(found)
     else:
         own.replace_mesh(found, mesh)
-    found.display_type = "BOUNDS"
+    found.display_type = "WIRE"
     # Seen by EEVEE's shadow maps only: never by the camera, a reflection or a bounce.
     found.visible_camera = found.visible_diffuse = found.visible_glossy = False
     found.visible_transmission = found.visible_volume_scatter = False
@@ -110,57 +99,24 @@ def _ensure_object(scene, box, height):
     return found
 
 
-def _ensure_image(found, weight):
-    rows, columns = weight.shape
-    image = _map_image(found.active_material)
-    if image is not None and tuple(image.size) != (columns, rows):
-        image = None  # a new one; the old goes with the material's rebuild below
-    if image is None:
-        image = own.mark(bpy.data.images.new("Sandscape Cloud Shadows", columns, rows, alpha=False),
-                         own.IMAGE_KEY, own.CLOUD_SHADOW_MAP)
-        image.colorspace_settings.name = "Non-Color"  # before the pixels: it regenerates them
-    rgba = np.repeat(weight[..., None], 4, axis=-1).astype(np.float32)
-    rgba[..., 3] = 1.0
-    image.pixels.foreach_set(rgba.ravel())
-    image.pack()
-    return image
-
-
-def _build_material(found, image):
+def _build_material(found):
+    """Opaque in EEVEE (an opaque caster costs its shadow maps least), clear in Cycles."""
     material = own.slot_material(found, own.CLOUD_SHADOWS)
     if material is None:
         material = own.mark(bpy.data.materials.new("Sandscape Cloud Shadows"), own.MATERIAL_KEY,
                             own.CLOUD_SHADOWS)
         found.data.materials.clear()
         found.data.materials.append(material)
-    old = _map_image(material)
     tree = material.node_tree
     tree.nodes.clear()
-    texture = h.add_node(tree, "ShaderNodeTexImage", name=MAP_NODE, label="Light Let Through (EEVEE)",
-                         image=image, interpolation="Cubic", extension="EXTEND")
-    channel = h.add_node(tree, "ShaderNodeSeparateColor", name="Sandscape Cloud Shadow Channel")
-    h.link(tree, texture.outputs["Color"], channel.inputs["Color"])
     opaque = h.add_node(tree, "ShaderNodeBsdfDiffuse", name="Sandscape Cloud Shadow Opaque",
                         inputs={"Color": (0.0, 0.0, 0.0, 1.0)})
-    clear = h.add_node(tree, "ShaderNodeBsdfTransparent", name="Sandscape Cloud Shadow Clear")
-    clear_where = h.math(tree, "GREATER_THAN", channel.outputs["Red"], HALF, label="Clear Where Over Half")
-    clear_where.name = "Sandscape Cloud Shadow Threshold"
-    blend = h.add_node(tree, "ShaderNodeMixShader", name="Sandscape Cloud Shadow Blend", label="Transparent")
-    h.link(tree, clear_where.outputs[0], blend.inputs["Fac"])
-    h.link(tree, opaque.outputs[0], blend.inputs[1])
-    h.link(tree, clear.outputs[0], blend.inputs[2])
     eevee = h.add_node(tree, "ShaderNodeOutputMaterial", name="Sandscape EEVEE Output", target="EEVEE")
-    h.link(tree, blend.outputs[0], eevee.inputs["Surface"])
-    cycles_clear = h.add_node(tree, "ShaderNodeBsdfTransparent", name="Sandscape Cloud Shadow Cycles")
+    h.link(tree, opaque.outputs[0], eevee.inputs["Surface"])
+    clear = h.add_node(tree, "ShaderNodeBsdfTransparent", name="Sandscape Cloud Shadow Cycles")
     cycles = h.add_node(tree, "ShaderNodeOutputMaterial", name="Sandscape Cycles Output", target="CYCLES")
-    h.link(tree, cycles_clear.outputs[0], cycles.inputs["Surface"])
+    h.link(tree, clear.outputs[0], cycles.inputs["Surface"])
     h.arrange(tree, set_widths=False)
-    material.surface_render_method = "DITHERED"
-    material.use_transparent_shadow = True
-    if old is not None and old is not image and old.users == 0:
-        name = old.name
-        bpy.data.images.remove(old)
-        image.name = name  # not "….001"
     return material
 
 
@@ -175,9 +131,8 @@ def apply(scene, box, base, thickness, step, density_at, wind):
         return None
     steps = twin.steps_for(thickness, direction, step)
     light = twin.transmittance(density_at, box, base, thickness, direction, steps)
-    found = _ensure_object(scene, box, base)
-    image = _ensure_image(found, light)
-    _build_material(found, image)
+    found = _ensure_object(scene, _mesh(light, box, base))
+    _build_material(found)
     cloud_grid.drift_with_wind(found, wind, frames_per_second(scene))
     found["sandscape_sun_direction"] = [float(v) for v in direction]  # what the map was made for
     return {"object": found, "texels": light.shape, "steps": steps, "shaded": float(np.mean(light < HALF))}

@@ -72,3 +72,47 @@ def trilinear(values, corner, voxel, points):
         i, j, k = (low[..., axis] + side for axis, side in enumerate(corner_index))
         total += weight * values[i, j, k]
     return np.where(inside, total, 0.0)
+
+
+def shadow_polygons(light, box, threshold=0.5):
+    """The ground the map shades, as polygons: marching squares over the texel centres of `light`
+    (rows = y) spanning box, each cell cut where its corners cross `threshold` (linearly between
+    them). Returns (vertices (n, 2), polygons: lists of vertex indices, counter-clockwise)."""
+    light = np.asarray(light, np.float64)
+    rows, columns = light.shape
+    xs, ys = texel_centres(box, max(rows, columns))
+    xs, ys = xs[0], ys[:, 0]
+    if len(xs) != columns or len(ys) != rows:  # texel_centres rounds; follow the map's own shape
+        xmin, ymin, xmax, ymax = box
+        xs = xmin + (np.arange(columns) + 0.5) * (xmax - xmin) / columns
+        ys = ymin + (np.arange(rows) + 0.5) * (ymax - ymin) / rows
+    inside = light < threshold
+    corners = ((0, 0), (0, 1), (1, 1), (1, 0))  # (row, column) offsets, counter-clockwise in x-y
+    vertices, polygons = [], []
+    cells = np.argwhere(inside[:-1, :-1] | inside[1:, :-1] | inside[:-1, 1:] | inside[1:, 1:])
+    for i, j in cells:
+        polygon = []
+        for k in range(4):
+            (ai, aj), (bi, bj) = corners[k], corners[(k + 1) % 4]
+            a, b = light[i + ai, j + aj], light[i + bi, j + bj]
+            if a < threshold:
+                polygon.append((xs[j + aj], ys[i + ai]))
+            if (a < threshold) != (b < threshold):
+                t = (threshold - a) / (b - a)
+                x, y = xs[j + aj], ys[i + ai]
+                polygon.append((x + t * (xs[j + bj] - x), y + t * (ys[i + bi] - y)))
+        if len(polygon) >= 3:
+            polygons.append(list(range(len(vertices), len(vertices) + len(polygon))))
+            vertices.extend(polygon)
+    return np.array(vertices, np.float64).reshape(-1, 2), polygons
+
+
+def smoothed(light):
+    """The map blurred by a [1, 2, 1] / 4 kernel along each axis (edges repeated): rounder
+    outlines than the texels' straight cuts."""
+    light = np.asarray(light, np.float64)
+    for axis in (0, 1):
+        padded = np.pad(light, [(1, 1) if a == axis else (0, 0) for a in (0, 1)], mode="edge")
+        low, mid, high = (np.take(padded, np.arange(k, k + light.shape[axis]), axis=axis) for k in range(3))
+        light = 0.25 * low + 0.5 * mid + 0.25 * high
+    return light
