@@ -1,8 +1,8 @@
 """The cloud layer's shadow as EEVEE can cast it. EEVEE's volumes shadow no surface, so a layer of
 the clouds' own light-let-through is laid at their base: for each point of the base, the light
-that crosses the layer towards the sun, exp(-optical depth along the sun's ray), a texture on a
-plane that only shadow rays see (addon/cloud_shadows.py). Cycles shadows the ground through the
-volume itself.
+that crosses the layer towards the sun, exp(-optical depth along the sun's ray), outlined where
+under half gets through into a mesh that only shadow rays see (addon/cloud_shadows.py). Cycles
+shadows the ground through the volume itself.
 """
 
 import numpy as np

@@ -11,7 +11,7 @@ FIELDS = cloud_fields(True)
 
 class SANDSCAPE_OT_add_clouds(SceneSettings, SandscapeOperator, bpy.types.Operator):
     """Add or update a cloud layer over what the scene camera sees: a weather map, cloud types, wind
-    and real volume scattering (in EEVEE, with a plane that casts the clouds' shadows)"""
+    and real volume scattering (in EEVEE, with a mesh that casts the clouds' shadows)"""
 
     bl_idname = "sandscape.add_clouds"
     bl_label = "Add Clouds"

@@ -1,6 +1,6 @@
-"""The clouds' shadow on the ground in EEVEE, whose volumes shadow no surface: a plane at the
-layer's base that only shadow rays see, opaque where the twin says the layer lets less than half
-the sun's light through (core.cloud_shadows). Checked against exp(-sigma d), and against Cycles'
+"""The clouds' shadow on the ground in EEVEE, whose volumes shadow no surface: a mesh at the
+layer's base that only shadow rays see, where the twin says the layer lets less than half the
+sun's light through (core.cloud_shadows). Checked against exp(-sigma d), and against Cycles'
 shadow through the volume on the same ground.
 """
 
@@ -140,8 +140,8 @@ def test_the_shadow_layer_is_made_for_eevee_once_and_goes_with_it():
 
 
 def test_the_shadow_layer_drifts_with_the_clouds_in_plain_blender(tmp_path):
-    """Saved and opened with Sandscape off and Python auto-run off, as on a farm: the plane moves
-    with the clouds' grid at a later frame, and its map is packed in the file."""
+    """Saved and opened with Sandscape off and Python auto-run off, as on a farm: the mesh moves
+    with the clouds' grid at a later frame, and its outline is in the file."""
     from devtools import session
 
     scene = bpy.context.scene
