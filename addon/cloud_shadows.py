@@ -51,12 +51,7 @@ def to_sun(scene, evaluated=True):
     sun = scene_sun(scene)
     if sun is None:
         return None
-    if evaluated:
-        elevation, azimuth = sun_angles(scene, sun)
-    else:
-        axis = np.asarray(sun.matrix_world.to_3x3().col[2], np.float64)
-        axis = axis / max(np.linalg.norm(axis), 1e-12)
-        elevation, azimuth = np.arcsin(np.clip(axis[2], -1.0, 1.0)), np.arctan2(axis[0], axis[1])
+    elevation, azimuth = sun_angles(scene, sun, evaluated)
     if elevation < np.radians(LOWEST_SUN):
         return None
     return air_twin.sun_direction(elevation, azimuth)
@@ -124,7 +119,7 @@ def apply(scene, box, base, thickness, step, density_at, wind):
     """Build or update the shadow layer over box (xmin, ymin, xmax, ymax, in the clouds' frame-0
     space) for the layer from `base` up `thickness`, whose extinction is density_at(points) at
     frame 0; remove it where the scene does not render with EEVEE or has no sun high enough.
-    Returns what was made (texels, steps, the share of the box in shadow) or None."""
+    Returns what was made (the object, the map's texels) or None."""
     direction = to_sun(scene) if wanted(scene) else None
     if direction is None:
         remove(scene)
@@ -135,4 +130,4 @@ def apply(scene, box, base, thickness, step, density_at, wind):
     _build_material(found)
     cloud_grid.drift_with_wind(found, wind, frames_per_second(scene))
     found["sandscape_sun_direction"] = [float(v) for v in direction]  # what the map was made for
-    return {"object": found, "texels": light.shape, "steps": steps, "shaded": float(np.mean(light < HALF))}
+    return {"object": found, "texels": light.shape}

@@ -96,9 +96,9 @@ def twin_density(scene, s, image, done):
     else:
         def cloudiness(points):
             return twin.cloudiness(points, p)
-    corner, _, counts = done.get("box", (None, None, ()))
-    if s["evaluation"] != "GRID" or math.prod(counts) > SHADOW_TWIN_VOXELS:
+    if s["evaluation"] != "GRID" or done["voxels"] > SHADOW_TWIN_VOXELS:
         return lambda points: twin.density_from_cloudiness(cloudiness(points), p)
+    corner, _, counts = done["box"]
     axes = [corner[axis] + np.arange(counts[axis]) * done["voxel"] for axis in range(3)]
     voxels = cloudiness(np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1))
     return lambda points: twin.density_from_cloudiness(
@@ -310,7 +310,10 @@ def refresh_shadows(scene):
     image = bpy.data.images.get(s["weather_image"]) if s["weather_source"] == "IMAGE" else None
     if s["weather_source"] == "IMAGE" and image is None:
         return None
-    done = plan(scene, s, image)
+    return _apply_shadows(scene, s, image, plan(scene, s, image))
+
+
+def _apply_shadows(scene, s, image, done):
     return cloud_shadows.apply(scene, done["carried"], s["base"], s["thickness"], s["step"],
                                twin_density(scene, s, image, done), scene.sandscape_atmosphere.wind)
 
@@ -352,9 +355,7 @@ def apply(scene, s, image=None, done=None):
                            "the layer needs them)")
             scene.cycles.volume_max_steps = needed
     layer.matrix_world.translation.z = 0.0
-    shadows = cloud_shadows.apply(scene, done["carried"], low, s["thickness"], s["step"],
-                                  twin_density(scene, s, image, done),
-                                  scene.sandscape_atmosphere.wind)
+    shadows = _apply_shadows(scene, s, image, done)
     warnings = [text for text in (done["warning"], clip_warning(scene, s)) if text]
     return {**done, "layer": layer, "warning": "; ".join(warnings) or None, "changes": changes,
             "eevee_shadows": shadows}

@@ -29,7 +29,7 @@ SCENERY = (DUNES,)  # ours, yet the scene's ground: counted where the scene's ge
 # Kinds of materials, images, worlds
 SAND, DUST, CLOUD_MATERIAL, CLOAK = "sand", "dust", "clouds", "cloak"
 CLOAK_TRIM, WRAPS = "walker_trim", "walker_wraps"  # the walker's golden trim; legs' and hands' cloth
-GLINT_NOISE, PRINT_MAP, CLOUD_SHADOW_MAP = "glint_noise", "print_map", "cloud_shadow_map"
+GLINT_NOISE, PRINT_MAP = "glint_noise", "print_map"
 SKY = "sky"
 CLOUD_GRID = "cloud_grid"  # the cloud layer's own geometry-nodes tree
 

@@ -27,9 +27,11 @@ def sun_rotation(elevation, azimuth):
     return (math.pi / 2 - elevation, 0.0, math.pi - azimuth)
 
 
-def sun_angles(scene, sun):
-    """(elevation, azimuth) a sun lamp shines from, as the scene evaluates it: its world +Z."""
-    axis = evaluation.world_matrix(scene, sun).to_3x3() @ Vector((0.0, 0.0, 1.0))
+def sun_angles(scene, sun, evaluated=True):
+    """(elevation, azimuth) a sun lamp shines from, as the scene evaluates it (else as its matrix
+    stands: a panel's draw evaluates nothing): its world +Z."""
+    matrix = evaluation.world_matrix(scene, sun) if evaluated else sun.matrix_world
+    axis = matrix.to_3x3() @ Vector((0.0, 0.0, 1.0))
     if axis.length == 0.0:
         return 0.0, 0.0
     axis.normalize()

@@ -23,9 +23,14 @@ def texel_centres(box, texels=MAX_TEXELS):
     width, depth = xmax - xmin, ymax - ymin
     columns = max(2, int(round(texels * min(1.0, width / depth))))
     rows = max(2, int(round(texels * min(1.0, depth / width))))
-    xs = xmin + (np.arange(columns) + 0.5) * width / columns
-    ys = ymin + (np.arange(rows) + 0.5) * depth / rows
-    return np.meshgrid(xs, ys)
+    return np.meshgrid(*_axes(box, rows, columns))
+
+
+def _axes(box, rows, columns):
+    """The x of each column's and the y of each row's texel centre over box."""
+    xmin, ymin, xmax, ymax = box
+    return (xmin + (np.arange(columns) + 0.5) * (xmax - xmin) / columns,
+            ymin + (np.arange(rows) + 0.5) * (ymax - ymin) / rows)
 
 
 def steps_for(thickness, to_sun, step):
@@ -79,13 +84,7 @@ def shadow_polygons(light, box, threshold=0.5):
     (rows = y) spanning box, each cell cut where its corners cross `threshold` (linearly between
     them). Returns (vertices (n, 2), polygons: lists of vertex indices, counter-clockwise)."""
     light = np.asarray(light, np.float64)
-    rows, columns = light.shape
-    xs, ys = texel_centres(box, max(rows, columns))
-    xs, ys = xs[0], ys[:, 0]
-    if len(xs) != columns or len(ys) != rows:  # texel_centres rounds; follow the map's own shape
-        xmin, ymin, xmax, ymax = box
-        xs = xmin + (np.arange(columns) + 0.5) * (xmax - xmin) / columns
-        ys = ymin + (np.arange(rows) + 0.5) * (ymax - ymin) / rows
+    xs, ys = _axes(box, *light.shape)
     inside = light < threshold
     corners = ((0, 0), (0, 1), (1, 1), (1, 0))  # (row, column) offsets, counter-clockwise in x-y
     vertices, polygons = [], []
