@@ -42,11 +42,13 @@ CAMERA_SHIFT = (0.05, 0.0)  # lens shift, not a turn: the low sun further in
 # Desert haze: visibility 10-50 km (../shared/look-references.md); the far dunes fade.
 AIR = {"density": 0.003, "dust_density": 0.002, "margin": 20.0, "visibility": 20000.0, "set_exposure": True,
        "replace_world": True}
-# Cumulus based at 1.2 km: seen from 8.5 degrees up within the 8 km layer, in the top of a frame
-# that looks down the trail; the 6 degree sun reaches that height 11 km off, past the layer's grid
-# (at 1 km it crossed the grid's far end toward the sun, 9.75 km off, and shaded the walker).
-CLOUDS = {"coverage": 0.4, "seed": 2, "base": 1200.0, "thickness": 1200.0, "step": 400.0, "voxel": 50.0,
-          "reach": 8000.0}
+# Cumulus based at 1.2 km out to 25 km, so they recede to the haze at the horizon (within 8 km they
+# only reached 8.5 degrees down the sky: one flat deck over the frame's top, "a lid" to five reviews).
+# The 6 degree sun's ray crosses the layer 11-23 km off; seed 51 at this coverage leaves it and a
+# 0.6 degree cone round it clear on every frame (twin search of seeds 0-95; a clouded sun put the whole
+# frame in shade), with cloud 2-6 degrees round the sun. 100 m voxels keep the grid at 3.6 M.
+CLOUDS = {"coverage": 0.4, "seed": 51, "base": 1200.0, "thickness": 1200.0, "step": 400.0, "voxel": 100.0,
+          "reach": 25000.0}
 # Shot under the grey-card exposure Add Atmosphere sets, as golden hour is photographed: AgX then
 # keeps the lit sand's colour instead of rolling it toward white (a milky frame at the card's).
 EXPOSURE_SHIFT = -0.7  # stops

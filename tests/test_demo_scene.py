@@ -5,6 +5,7 @@ import numpy as np
 import pytest
 
 from devtools import readback
+from devtools.cloud_gap import cone
 
 
 def ours(kind):
@@ -53,25 +54,56 @@ def test_every_frame_the_camera_is_above_the_sand_and_the_walker_on_it(sandscape
     assert 1.35 < speed.min() and speed.max() < 1.5  # a walking pace on every frame
 
 
+def _cloud_on_rays(layer, origin, rays, far=40000.0):
+    """Per ray from origin, the grid's largest cloudiness out to `far` (50 m steps): > 0 is cloud."""
+    inverse = np.array(layer.matrix_world.inverted())
+    distances = np.linspace(0.0, far, int(far / 50.0) + 1)
+    world = origin + distances[None, :, None] * rays[:, None, :]
+    local = world @ inverse[:3, :3].T + inverse[:3, 3]
+    return readback.grid_values(layer, local.reshape(-1, 3)).reshape(len(rays), -1).max(axis=1)
+
+
 def test_the_sun_reaches_the_walker_past_the_clouds_on_every_frame(sandscape, demo_scene):
     """The demo's sand is lit by the low sun, not in the clouds' shadow: from the walker toward
-    the sun, the cloud grid holds no density on any frame (a 700 m base let the layer cross the
-    6 degree sun's path a few kilometres off, and the whole frame lay in shade)."""
+    the sun, and 0.6 degrees round it (the sky round the disc), the cloud grid holds no density on
+    every 40th frame (a 700 m base let the layer cross the 6 degree sun's path a few kilometres
+    off, and the whole frame lay in shade). The layer reaches 25 km, so the sun sits in a gap:
+    there is cloud 2-6 degrees from it."""
     scene = demo_scene
     walker = scene.sandscape_footprints.walker
     layer = ours("clouds")[0]
     sun = sandscape.addon.atmosphere.scene_sun(scene)
     toward = np.array(sun.matrix_world.col[2][:3])  # a sun lamp shines down its -Z
     toward /= np.linalg.norm(toward)
-    inverse = np.array(layer.matrix_world.inverted())
-    distances = np.linspace(0.0, 40000.0, 801)  # 50 m steps, out past the layer's box
-    for frame in (scene.frame_start, (scene.frame_start + scene.frame_end) // 2, scene.frame_end):
+    rays = np.vstack([toward, cone(toward, 0.6)])
+    for frame in range(scene.frame_start, scene.frame_end + 1, 40):
         scene.frame_set(frame)
-        world = np.array(walker.matrix_world.translation) + distances[:, None] * toward
-        local = world @ inverse[:3, :3].T + inverse[:3, 3]
-        density = readback.grid_values(layer, local)
-        assert density.max() <= 1e-6, (frame, distances[density.argmax()])
+        cloud = _cloud_on_rays(layer, np.array(walker.matrix_world.translation), rays)
+        assert cloud.max() <= 1e-6, (frame, cloud)
+    scene.frame_set(60)
+    near = np.vstack([cone(toward, degrees) for degrees in (2.0, 4.0, 6.0)])
+    assert (_cloud_on_rays(layer, np.array(walker.matrix_world.translation), near) > 0).sum() >= 4
 
+
+def test_the_clouds_reach_down_to_the_haze_at_the_horizon(sandscape, demo_scene):
+    """Seen from the camera on the hero frame, the layer is not one deck over the frame's top:
+    rays 3-5 degrees up across the view's width meet cloud on at least a quarter of them (within
+    8 km the layer began 8.5 degrees up, and none did)."""
+    scene = demo_scene
+    scene.frame_set(60)
+    camera = scene.camera
+    layer = ours("clouds")[0]
+    view = -np.array(camera.matrix_world.col[2][:3])
+    heading = np.arctan2(view[1], view[0])
+    headings = heading + np.radians(np.linspace(-40.0, 40.0, 33))
+    hits = []
+    for elevation in np.radians((3.0, 4.0, 5.0)):
+        rays = np.stack([np.cos(headings) * np.cos(elevation), np.sin(headings) * np.cos(elevation),
+                         np.full(len(headings), np.sin(elevation))], axis=-1)
+        hits.append(_cloud_on_rays(layer, np.array(camera.matrix_world.translation), rays) > 0)
+    share = float(np.mean(hits))
+    print(f"rays 3-5 degrees up meeting cloud: {share:.2f}")
+    assert share >= 0.25
 
 
 def test_every_frame_the_trail_runs_toward_the_walker_and_the_sun_is_in_frame(sandscape, demo_scene):
