@@ -44,9 +44,10 @@ AIR = {"density": 0.003, "dust_density": 0.002, "margin": 20.0, "visibility": 20
        "replace_world": True}
 # Cumulus based at 1.2 km out to 25 km, so they recede to the haze at the horizon (within 8 km they
 # only reached 8.5 degrees down the sky: one flat deck over the frame's top, "a lid" to five reviews).
-# The 6 degree sun's ray crosses the layer 11-23 km off; seed 51 at this coverage leaves it and a
-# 0.6 degree cone round it clear on every frame (twin search of seeds 0-95; a clouded sun put the whole
-# frame in shade), with cloud 2-6 degrees round the sun. 100 m voxels keep the grid at 3.6 M.
+# The 6 degree sun's ray crosses the layer 11-23 km off; of seeds 0-99 at this coverage only 51 leaves
+# it and a 0.6 degree cone round it clear on every 40th frame (devtools/cloud_gap.py, on the twin; a
+# clouded sun put the whole frame in shade), with cloud 2-6 degrees round the sun. 100 m voxels keep
+# the grid at 3.6 M.
 CLOUDS = {"coverage": 0.4, "seed": 51, "base": 1200.0, "thickness": 1200.0, "step": 400.0, "voxel": 100.0,
           "reach": 25000.0}
 # Shot under the grey-card exposure Add Atmosphere sets, as golden hour is photographed: AgX then
