@@ -17,8 +17,10 @@ REPO = pathlib.Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(REPO))
 
 from devtools import session  # noqa: E402
+from devtools.demo import HERO_FRAME  # noqa: E402
 
-HERO_FRAME = 60
+ROUND_SUN = 0.6  # degrees: the sky round the disc, kept clear
+NEAR_SUN = (2.0, 4.0, 6.0)  # degrees: where the gap's edges should hold cloud
 
 
 def cone(axis, degrees, count=8):
@@ -70,8 +72,8 @@ def main(argv=None):
     base = addon.clouds.parameters(scene, settings)
     if args.coverage is not None:
         base["coverage"] = args.coverage
-    round_sun = np.vstack([toward, cone(toward, 0.6)])
-    near_sun = np.vstack([cone(toward, degrees) for degrees in (2.0, 4.0, 6.0)])
+    round_sun = np.vstack([toward, cone(toward, ROUND_SUN)])
+    near_sun = np.vstack([cone(toward, degrees) for degrees in NEAR_SUN])
     clear = []
     for seed in range(*args.seeds):
         p = {**base, "seed": seed}

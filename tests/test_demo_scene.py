@@ -5,7 +5,8 @@ import numpy as np
 import pytest
 
 from devtools import readback
-from devtools.cloud_gap import cone
+from devtools.cloud_gap import NEAR_SUN, ROUND_SUN, cone
+from devtools.demo import HERO_FRAME
 
 
 def ours(kind):
@@ -75,13 +76,13 @@ def test_the_sun_reaches_the_walker_past_the_clouds_on_every_frame(sandscape, de
     sun = sandscape.addon.atmosphere.scene_sun(scene)
     toward = np.array(sun.matrix_world.col[2][:3])  # a sun lamp shines down its -Z
     toward /= np.linalg.norm(toward)
-    rays = np.vstack([toward, cone(toward, 0.6)])
+    rays = np.vstack([toward, cone(toward, ROUND_SUN)])
     for frame in range(scene.frame_start, scene.frame_end + 1, 40):
         scene.frame_set(frame)
         cloud = _cloud_on_rays(layer, np.array(walker.matrix_world.translation), rays)
         assert cloud.max() <= 1e-6, (frame, cloud)
-    scene.frame_set(60)
-    near = np.vstack([cone(toward, degrees) for degrees in (2.0, 4.0, 6.0)])
+    scene.frame_set(HERO_FRAME)
+    near = np.vstack([cone(toward, degrees) for degrees in NEAR_SUN])
     assert (_cloud_on_rays(layer, np.array(walker.matrix_world.translation), near) > 0).sum() >= 4
 
 
@@ -90,7 +91,7 @@ def test_the_clouds_reach_down_to_the_haze_at_the_horizon(sandscape, demo_scene)
     rays 3-5 degrees up across the view's width meet cloud on at least a quarter of them (within
     8 km the layer began 8.5 degrees up, and none did)."""
     scene = demo_scene
-    scene.frame_set(60)
+    scene.frame_set(HERO_FRAME)
     camera = scene.camera
     layer = ours("clouds")[0]
     view = -np.array(camera.matrix_world.col[2][:3])
