@@ -20,6 +20,7 @@ from ..node_groups import dust_field, dust_volume
 from ..node_groups import helper as h
 from . import drivers, evaluation, sand, sand_eevee, shot, sky_eevee, sky_eevee_haze, units, walker_wind
 from . import ownership as own
+from .far_haze import refresh as refresh_far_haze
 from .sun_lamp import ensure_sun, is_ours, scene_sun  # noqa: F401 (the atmosphere's API)
 
 # Bump when build_sky_nodes changes: a world built by an older version is rebuilt.
@@ -353,6 +354,8 @@ def apply(scene, settings):
     sky_eevee.follow_clamp(world, scene)
     if sky_eevee.followed_sand(world) is None:  # sand added before the sky: the ground takes its colour
         sky_eevee.follow_sand(world, next(filter(None, map(sand.find_sand_material, scene.objects)), None))
+    haze_shell, _ = refresh_far_haze(scene)  # hollowed round the box as it is now
     # Volume sampling, like the exposure, is the artist's: the quality presets set it.
     return {"sun": sun, "followed": followed, "elevation": elevation, "azimuth": azimuth, "world": world,
-            "volume": box, "coefficients": per_metre, "exposure": exposure, "changes": changes}
+            "volume": box, "coefficients": per_metre, "exposure": exposure, "changes": changes,
+            "far_haze": haze_shell}

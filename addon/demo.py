@@ -39,8 +39,10 @@ WALK_SWAY = 0.03  # a straighter S than Add Walker's (it turns up to 11 degrees,
 CAMERA_CLEARANCE = 0.6  # metres the camera keeps above the sand under it
 CAMERA_SMOOTH_FRAMES = 12  # the lift over a crest eases in and out over about this many frames
 CAMERA_SHIFT = (0.05, 0.0)  # lens shift, not a turn: the low sun further in
-# Desert haze: visibility 10-50 km (../shared/look-references.md); the far dunes fade.
-AIR = {"density": 0.003, "dust_density": 0.002, "margin": 20.0, "visibility": 20000.0, "set_exposure": True,
+# Desert haze: visibility 10-50 km (../shared/look-references.md); the far dunes fade. Its upper end:
+# the far haze hazes the clouds out to 25 km, and at 20 km only the nearest, 10 degrees up, kept any
+# contrast (cloud at 5 degrees up 0.07 of it; now 0.34).
+AIR = {"density": 0.003, "dust_density": 0.002, "margin": 20.0, "visibility": 50000.0, "set_exposure": True,
        "replace_world": True}
 # Cumulus based at 1.2 km out to 25 km, so they recede to the haze at the horizon (within 8 km they
 # only reached 8.5 degrees down the sky: one flat deck over the frame's top, "a lid" to five reviews).

@@ -22,6 +22,7 @@ TERRAIN_KEY = "sandscape_terrain"  # on footprint data: the terrain it belongs t
 # Kinds of objects
 SUN, DUST_VOLUME, CLOUDS = "sun", "dust_volume", "clouds"
 CLOUD_SHADOWS = "cloud_shadows"  # EEVEE's shadow of the clouds: an object, its material
+FAR_HAZE = "far_haze"  # the haze between the dust box and the clouds: an object, its material
 WALKER, WALK_PATH, WALKER_LIMB = "walker", "walk_path", "walker_limb"
 FOOTPRINTS, PATCH, PRINT_FRAME = "footprints", "footprint_patch", "print_frame"
 DUNES, DUNE_HORIZON = "dunes", "dune_horizon"

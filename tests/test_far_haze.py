@@ -1,0 +1,168 @@
+"""The far haze: beyond the dust box, out to the clouds, what lies behind fades as exp(-beta L)
+(Koschmieder), and clear sky is left as it was.
+
+Rendered on a scene made with the operators as an artist would (their camera, Add Atmosphere's
+haze, Add Clouds far up), with markers that glow for camera rays only, each frame rendered again
+with the markers black and the same seed (test_aerial_perspective.py's method): the difference is
+the glow times what the air lets through. With the far haze over without it, the dust box's share
+cancels and the far haze's exp(-beta L) is left, L from core.far_haze on the object's own shell.
+"""
+
+import math
+
+import bpy
+import numpy as np
+import pytest
+
+from core import atmosphere as air
+from core import far_haze as twin
+from devtools import readback, scenes, session
+from tests.test_aerial_perspective import inside_pixels, marker
+
+VISIBILITY = 4000.0  # m: the dust box then ends about 4.6 km out
+DISTANCES = (5500.0, 7000.0)  # m: beyond the box, inside the clouds' sky
+ANGLES = (-6.0, 6.0)  # degrees from the view axis
+GLOW = 2000.0  # the box lets about 1 % through: the difference stays far above float noise
+RESOLUTION = (192, 72)
+CLOUDS = {"base": 3000.0, "thickness": 500.0, "reach": 10000.0, "voxel": 500.0, "coverage": 0.3}
+TRANSMITTANCE_TOLERANCE = 0.01  # relative, on exp(-beta L) (64 samples: off by 0.3 % at most)
+SKY_TOLERANCE = 0.005  # relative: clear sky 1-7 degrees up with the far haze and without (0.12 %)
+
+
+def _shell():
+    return bpy.context.scene.objects.get("Sandscape Far Haze") if _ours() else None
+
+
+def _ours():
+    return [o for o in bpy.context.scene.objects if o.get("sandscape_object") == "far_haze"]
+
+
+def _glows(value):
+    for material in bpy.data.materials:
+        if material.name.startswith("Marker"):
+            glow = next(n for n in material.node_tree.nodes if n.bl_idname == "ShaderNodeMath")
+            glow.inputs[1].default_value = value
+
+
+def _hazy_scene():
+    camera = scenes.camera("PERSP", location=(0.0, 0.0, 2.0), rotation=(math.pi / 2, 0.0, 0.0))
+    camera.data.clip_end = 30000.0
+    markers = [(distance, marker(f"Marker {distance:.0f}", GLOW, distance, angle))
+               for distance, angle in zip(DISTANCES, ANGLES, strict=True)]
+    scene = readback.cycles_scene(resolution=RESOLUTION, samples=64)
+    settings = scene.sandscape_atmosphere
+    settings.density, settings.dust_density, settings.use_wind = 0.0, 0.0, False  # grey: the haze alone
+    settings.use_haze, settings.visibility = True, VISIBILITY
+    assert bpy.ops.sandscape.add_atmosphere() == {"FINISHED"}
+    for name, value in CLOUDS.items():
+        setattr(scene.sandscape_clouds, name, value)
+    assert bpy.ops.sandscape.add_clouds() == {"FINISHED"}
+    return scene, camera, markers
+
+
+@pytest.fixture(scope="module")
+def rendered():
+    session.reset()
+    scene, camera, markers = _hazy_scene()
+    shell = _shell()
+    assert shell is not None
+    renders = {}
+    for hidden in (False, True):
+        shell.hide_render = hidden
+        for glow in (GLOW, 0.0):
+            _glows(glow)
+            renders[hidden, glow] = readback.render(scene)[..., :3].astype(np.float64)
+    shell.hide_render = False
+    verts = np.array([v.co[:] for v in shell.data.vertices])  # world = local: the shell is not moved
+    outer_low, outer_high = verts[:8].min(axis=0), verts[:8].max(axis=0)
+    hollow_low, hollow_high = verts[8:].min(axis=0), verts[8:].max(axis=0)
+    origins, directions = scenes.camera_rays(camera, *RESOLUTION)
+    lengths = {}
+    for distance, corners in markers:
+        where = inside_pixels(camera, corners)
+        reach = distance / directions[where][..., 1]  # to the marker's plane
+        lengths[distance] = (where, twin.haze_length(
+            origins[where], directions[where], reach, (*outer_low[:2], *outer_high[:2]), outer_low[2],
+            outer_high[2], (*hollow_low[:2], *hollow_high[:2], hollow_high[2])))
+    return renders, lengths, directions
+
+
+def test_far_land_fades_as_exp_minus_beta_l_beyond_the_dust_box(rendered):
+    renders, lengths, _ = rendered
+    beta = air.haze_extinction(VISIBILITY)
+    for distance, (where, length) in lengths.items():
+        hazed = renders[False, GLOW][where] - renders[False, 0.0][where]
+        clear = renders[True, GLOW][where] - renders[True, 0.0][where]
+        measured = hazed.mean(axis=(0, 1)) / clear.mean(axis=(0, 1))
+        expected = np.exp(-beta * length).mean()
+        print(f"{distance:.0f} m: {length.mean():.0f} m of far haze, with it over without "
+              f"{np.round(measured, 4)}, exp(-beta L) {expected:.4f}")
+        assert length.min() > 500.0  # the marker is well beyond the box
+        assert np.abs(measured / expected - 1.0).max() <= TRANSMITTANCE_TOLERANCE
+
+
+def test_clear_sky_is_left_as_it_was(rendered):
+    """The haze glows with the sky's own colour in the ray's direction: where nothing lies behind
+    it, it adds what it takes away."""
+    renders, _lengths, directions = rendered
+    hazed, clear = renders[False, 0.0], renders[True, 0.0]
+    rise = directions[..., 2]
+    up = (rise > math.sin(math.radians(1.0))) & (rise < math.sin(math.radians(7.0)))
+    ratio = hazed[up].mean(axis=0) / clear[up].mean(axis=0)
+    print(f"clear sky 1-7 degrees up, with the far haze over without: {np.round(ratio, 4)}")
+    assert np.isfinite(hazed).all() and np.abs(ratio - 1.0).max() <= SKY_TOLERANCE
+
+
+def test_one_far_haze_follows_the_box_and_goes_with_the_clouds(sandscape):
+    scene, _camera, _markers = _hazy_scene()
+    first = _shell()
+    assert max(v.co.z for v in first.data.vertices) == pytest.approx(CLOUDS["base"])
+    scene.sandscape_atmosphere.visibility = 2000.0  # a denser haze: a smaller dust box
+    assert bpy.ops.sandscape.add_atmosphere() == {"FINISHED"}
+    assert _ours() == [first]
+    box = sandscape.addon.ownership.scene_object(scene, sandscape.addon.ownership.DUST_VOLUME)
+    low, high = sandscape.addon.far_haze.box_bounds(box)
+    hollow = np.array([v.co[:] for v in first.data.vertices][8:])
+    assert hollow[:, 0].max() > high[0] and hollow[:, 0].max() == pytest.approx(high[0], rel=0.01)
+    glow = first.active_material.node_tree.nodes["Sandscape Haze Glow"]
+    assert glow.inputs["Strength"].default_value == pytest.approx(air.haze_extinction(2000.0))
+    assert bpy.ops.sandscape.add_clouds() == {"FINISHED"}
+    assert _ours() == [first]
+    scene.sandscape_clouds.coverage = 0.0
+    assert bpy.ops.sandscape.add_clouds() == {"FINISHED"}
+    assert _ours() == []
+
+
+def test_an_artists_own_world_gets_no_far_haze_and_the_report_says_why(sandscape):
+    world = bpy.data.worlds.new("Artist Sky")
+    world.node_tree.nodes["Background"].inputs["Color"].default_value = (0.3, 0.4, 0.6, 1.0)
+    bpy.context.scene.world = world
+    scene, _camera, _markers = _hazy_scene()
+    assert scene.world == world and _ours() == []
+    reason = sandscape.addon.far_haze.why_not(scene)
+    assert "Sandscape's sky" in reason
+
+
+@pytest.mark.parametrize("cavity_top", [300.0, 5000.0])
+def test_the_shell_is_closed_and_its_twin_measures_its_rays(cavity_top):
+    region, bottom, top = (-1000.0, -800.0, 1200.0, 900.0), -10.0, 600.0
+    cavity = (-200.0, -150.0, 250.0, 300.0, cavity_top)
+    verts, faces = twin.shell_mesh(region, bottom, top, cavity)
+    edges = [(a, b) for face in faces for a, b in zip(face, face[1:] + face[:1], strict=True)]
+    assert sorted(edges) == sorted((b, a) for a, b in edges)  # every edge twice, once each way
+    hollow = 450.0 * 450.0 * (min(cavity_top, top) - bottom)
+    assert twin.enclosed_volume(verts, faces) == pytest.approx(2200 * 1700 * 610 - hollow)
+    rng = np.random.default_rng(3)
+    inside_hollow = ((-150, 200), (-100, 250), (0, 250))
+    origins = np.column_stack([rng.uniform(low, high, 40) for low, high in inside_hollow])
+    directions = rng.normal(size=(40, 3))
+    directions /= np.linalg.norm(directions, axis=1, keepdims=True)
+    lengths = twin.haze_length(origins, directions, np.full(40, 3000.0), region, bottom, top, cavity)
+    steps = (np.arange(30000) + 0.5) * 0.1
+    points = origins[:, None, :] + directions[:, None, :] * steps[None, :, None]
+    x, y, z = np.moveaxis(points, -1, 0)
+    inside = ((x > region[0]) & (x < region[2]) & (y > region[1]) & (y < region[3]) & (z > bottom) & (z < top)
+              & ~((x > cavity[0]) & (x < cavity[2]) & (y > cavity[1]) & (y < cavity[3])
+                  & (z < min(cavity_top, top))))
+    assert np.abs(inside.sum(axis=1) * 0.1 - lengths).max() < 0.5
+    assert twin.shell_mesh(region, bottom, top, (-2000, -2000, 2000, 2000, 700.0)) is None
