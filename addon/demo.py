@@ -40,8 +40,8 @@ CAMERA_CLEARANCE = 0.6  # metres the camera keeps above the sand under it
 CAMERA_SMOOTH_FRAMES = 12  # the lift over a crest eases in and out over about this many frames
 CAMERA_SHIFT = (0.05, 0.0)  # lens shift, not a turn: the low sun further in
 # Desert haze: visibility 10-50 km (../shared/look-references.md); the far dunes fade. Its upper end:
-# the far haze hazes the clouds out to 25 km, and at 20 km only the nearest, 10 degrees up, kept any
-# contrast (cloud at 5 degrees up 0.07 of it; now 0.34).
+# the far haze veils the clouds out to 25 km, and at 20 km a cloud 5 degrees up kept 0.11 of its
+# contrast, 3 degrees up 0.02 (now 0.42 and 0.20; core.far_haze.haze_length on the demo's boxes).
 AIR = {"density": 0.003, "dust_density": 0.002, "margin": 20.0, "visibility": 50000.0, "set_exposure": True,
        "replace_world": True}
 # Cumulus based at 1.2 km out to 25 km, so they recede to the haze at the horizon (within 8 km they
