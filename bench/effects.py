@@ -72,8 +72,11 @@ def removals(bpy, scene, modules):
         air.use_haze = False
         modules["atmosphere"].apply(scene, air)
 
+    def no_far_haze():
+        modules["far_haze"].remove(scene)
+
     return {"footprints": no_prints, "god rays": no_god_rays, "sun glow": no_glow, "clouds": no_clouds,
-            "glints": no_glints, "dusty air": no_dust}
+            "far haze": no_far_haze, "glints": no_glints, "dusty air": no_dust}
 
 
 def build_demo(bpy, samples, frame):
@@ -124,7 +127,7 @@ def main(argv=None):
     from devtools import readback
 
     modules = {name: importlib.import_module(f"{session.MODULE}.addon.{name}")
-               for name in ("footprints", "post", "clouds", "sand", "atmosphere")}
+               for name in ("footprints", "post", "clouds", "sand", "atmosphere", "far_haze")}
     out = pathlib.Path(tempfile.mkdtemp(prefix="sandscape-effects-"))
     scene = build_demo(bpy, args.samples, args.frame)
     started = time.perf_counter()
