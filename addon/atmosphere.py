@@ -233,11 +233,9 @@ def ensure_volume(scene, coefficients, low, high, dust=None):
         verts = [(x, y, z) for z in (-0.5, 0.5) for y in (-0.5, 0.5) for x in (-0.5, 0.5)]
         faces = [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)]
         mesh.from_pydata(verts, [], faces)
-        box = own.mark(bpy.data.objects.new("Sandscape Dust", mesh), own.OBJECT_KEY, own.DUST_VOLUME)
-        scene.collection.objects.link(box)
+        box = own.new_volume_object(scene, "Sandscape Dust", own.DUST_VOLUME, mesh)
         material = own.mark(bpy.data.materials.new("Sandscape Dust"), own.MATERIAL_KEY, own.DUST)
         mesh.materials.append(material)
-        box.display_type = "BOUNDS"  # see through it in the viewport
     # The sun lamp carries the whole sky's extinction already (the sky model's own sun): the box
     # dims what the camera sees through it, not the light again (its haze took the 6 degree sun
     # through kilometres of box down to a few per cent, and the sand went grey).

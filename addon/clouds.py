@@ -122,10 +122,7 @@ def remove_layer(scene):
 def ensure_layer(scene):
     layer = own.scene_object(scene, own.CLOUDS)
     if layer is None:
-        mesh = bpy.data.meshes.new("Sandscape Clouds")
-        layer = own.mark(bpy.data.objects.new("Sandscape Clouds", mesh), own.OBJECT_KEY, own.CLOUDS)
-        scene.collection.objects.link(layer)
-        layer.display_type = "BOUNDS"
+        layer = own.new_volume_object(scene, "Sandscape Clouds", own.CLOUDS)
     if layer.active_material is None or layer.active_material.get(own.MATERIAL_KEY) != own.CLOUD_MATERIAL:
         material = own.mark(bpy.data.materials.new("Sandscape Clouds"), own.MATERIAL_KEY, own.CLOUD_MATERIAL)
         layer.data.materials.clear()

@@ -87,13 +87,10 @@ def refresh(scene):
 def ensure_object(scene):
     shell = own.scene_object(scene, own.FAR_HAZE)
     if shell is None:
-        mesh = bpy.data.meshes.new("Sandscape Far Haze")
-        shell = own.mark(bpy.data.objects.new("Sandscape Far Haze", mesh), own.OBJECT_KEY, own.FAR_HAZE)
-        scene.collection.objects.link(shell)
-        shell.display_type = "BOUNDS"  # see through it in the viewport
+        shell = own.new_volume_object(scene, "Sandscape Far Haze", own.FAR_HAZE)
         shell.hide_select = True  # kilometres wide round the scene: not picked by a click
         material = own.mark(bpy.data.materials.new("Sandscape Far Haze"), own.MATERIAL_KEY, own.FAR_HAZE)
-        mesh.materials.append(material)
+        shell.data.materials.append(material)
     # Camera rays only: the lamp carries the sky's extinction, the world lights the sand.
     shell.visible_camera = True
     shell.visible_diffuse = shell.visible_glossy = shell.visible_transmission = False

@@ -43,6 +43,14 @@ def mark(block, key, kind, **links):
     return block
 
 
+def new_volume_object(scene, name, kind, mesh=None):
+    """Our object of a kind, linked to the scene, drawn as its bounds (see through a volume)."""
+    obj = mark(bpy.data.objects.new(name, mesh or bpy.data.meshes.new(name)), OBJECT_KEY, kind)
+    scene.collection.objects.link(obj)
+    obj.display_type = "BOUNDS"
+    return obj
+
+
 def scene_objects(scene, kind, **match):
     """Our objects of a kind in this scene, optionally matching more custom properties."""
     return [obj for obj in scene.objects if obj.get(OBJECT_KEY) == kind
