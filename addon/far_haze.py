@@ -39,8 +39,11 @@ def box_bounds(box):
 
 def why_not(scene):
     """Why the scene gets no far haze, or None: it needs clouds, a hazy dust box and our sky."""
-    if own.scene_object(scene, own.CLOUDS) is None:
+    layer = own.scene_object(scene, own.CLOUDS)
+    if layer is None:
         return "no cloud layer"
+    if REGION_KEY not in layer or BASE_KEY not in layer:  # made by a Sandscape without the far haze
+        return "the cloud layer predates the far haze: run Add Clouds again"
     if own.scene_object(scene, own.DUST_VOLUME) is None or not scene.sandscape_atmosphere.use_haze:
         return "no haze (Add Atmosphere with Haze on)"
     world = own.scene_world(scene)

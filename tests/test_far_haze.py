@@ -166,3 +166,12 @@ def test_the_shell_is_closed_and_its_twin_measures_its_rays(cavity_top):
                   & (z < min(cavity_top, top))))
     assert np.abs(inside.sum(axis=1) * 0.1 - lengths).max() < 0.5
     assert twin.shell_mesh(region, bottom, top, (-2000, -2000, 2000, 2000, 700.0)) is None
+
+
+def test_a_cloud_layer_from_before_the_far_haze_gets_none_and_no_traceback(sandscape):
+    """A file saved before the far haze: its layer holds no sky region; Add Atmosphere still runs."""
+    scene, _camera, _markers = _hazy_scene()
+    layer = sandscape.addon.ownership.scene_object(scene, sandscape.addon.ownership.CLOUDS)
+    del layer[sandscape.addon.far_haze.REGION_KEY]
+    assert bpy.ops.sandscape.add_atmosphere() == {"FINISHED"}
+    assert _ours() == [] and "run Add Clouds again" in sandscape.addon.far_haze.why_not(scene)
