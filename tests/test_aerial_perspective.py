@@ -52,9 +52,9 @@ def marker(name, glow, distance, angle):
                      for dx in (-1, 1) for dz in (-1, 1)])
 
 
-def inside_pixels(camera, corners):
+def inside_pixels(camera, corners, resolution=RESOLUTION):
     """Rows and columns of the pixels well inside a marker (a pixel off its edge)."""
-    columns, rows = scenes.project(camera, corners, *RESOLUTION)
+    columns, rows = scenes.project(camera, corners, *resolution)
     return (slice(int(math.ceil(rows.min())) + 1, int(rows.max()) - 1),
             slice(int(math.ceil(columns.min())) + 1, int(columns.max()) - 1))
 
