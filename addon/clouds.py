@@ -130,13 +130,6 @@ def ensure_layer(scene):
     return layer
 
 
-def set_mesh(layer, verts, faces):
-    mesh = bpy.data.meshes.new("Sandscape Clouds")
-    mesh.from_pydata([tuple(v) for v in verts], [], faces)
-    mesh.validate()
-    own.replace_mesh(layer, mesh)
-
-
 def _drive_frame(node):
     evaluation.drive_by_frame(node.inputs["Frame"])
 
@@ -327,7 +320,7 @@ def apply(scene, s, image=None, done=None):
     material = layer.active_material
     changes = []  # of the scene's render settings, for the report
     if s["evaluation"] == "GRID":
-        set_mesh(layer, np.zeros((0, 3)), [])
+        own.set_mesh(layer, np.zeros((0, 3)), [])
         grid_material(material, scene, s)
         _modifier, tree = cloud_grid.ensure_modifier(layer)
         weather = weather_inputs(scene, s)
@@ -340,7 +333,7 @@ def apply(scene, s, image=None, done=None):
     else:
         cloud_grid.remove_modifier(layer)
         cloud_grid.stop_drift(layer)
-        set_mesh(layer, *twin.box_mesh(done["region"], low, high))
+        own.set_mesh(layer, *twin.box_mesh(done["region"], low, high))
         procedural_material(material, scene, s, image, done["region"], done["fade"])
         rate = step_rate(done["region"], low, high, s["step"])
         material.cycles.volume_step_rate = float(min(max(rate, 1e-6), 1e6))

@@ -68,20 +68,16 @@ def refresh(scene):
         bpy.context.view_layer.update()  # the box's matrix after Add Atmosphere moved it
         low, high = box_bounds(box)
         gap = CAVITY_GAP * float(np.max(high - low))
-        low, high = low - gap, high + gap
-        region = tuple(layer[REGION_KEY])
-        mesh = twin.shell_mesh(region, float(low[2] + gap), float(layer[BASE_KEY]),
-                               (*map(float, low[:2]), *map(float, high[:2]), float(high[2])))
+        hollow = (*(low[:2] - gap), *(high[:2] + gap), high[2] + gap)
+        mesh = twin.shell_mesh(tuple(layer[REGION_KEY]), float(low[2]), float(layer[BASE_KEY]),
+                               tuple(map(float, hollow)))
         if mesh is None:
             reason = "the dust box holds all of the clouds' sky"
     if reason is not None:
         remove(scene)
         return None, reason
     shell = ensure_object(scene)
-    replacement = bpy.data.meshes.new("Sandscape Far Haze")
-    replacement.from_pydata([tuple(v) for v in mesh[0]], [], mesh[1])
-    replacement.validate()
-    own.replace_mesh(shell, replacement)
+    own.set_mesh(shell, *mesh)
     beta = air.haze_extinction(scene.sandscape_atmosphere.visibility)  # per scene unit
     build_material(shell.active_material, own.scene_world(scene), beta)
     return shell, None

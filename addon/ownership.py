@@ -105,6 +105,14 @@ def remove_with_data(obj):
         bpy.data.materials.remove(material)
 
 
+def set_mesh(obj, verts, faces):
+    """Give our object a new mesh built from vertices and faces (see replace_mesh)."""
+    mesh = bpy.data.meshes.new(obj.data.name)
+    mesh.from_pydata([tuple(v) for v in verts], [], faces)
+    mesh.validate()
+    replace_mesh(obj, mesh)
+
+
 def replace_mesh(obj, mesh):
     """Give our object a new mesh, with the old one's materials and name (running an operator
     again keeps "Sandscape Clouds", not "….001"); the old one goes when nothing else uses it."""
