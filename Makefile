@@ -3,7 +3,8 @@
 # make test: venv + pinned deps, ruff, then the pytest suite but its stress tests, on up to 4 workers
 # (work-stealing: a worker left idle at the end takes tests queued on the other), its 15 slowest listed
 # make stress: the stress tests (settings at their extremes, the largest maps) and the further
-# settings of checks make test runs at one or two (EEVEE's other sun elevations); CI runs both
+# settings of checks make test runs at one or two (EEVEE's other sun elevations), on the same workers;
+# CI runs both
 #
 # BLENDER picks the bpy the commands run on, each in its own venv:
 #   5.2 (default, the current LTS): bpy 5.2.3 on Python 3.13, .venv, requirements.txt
@@ -51,7 +52,7 @@ test: lint
 	$(PY) -m pytest -m "not stress and not sweep" -n auto --maxprocesses=4 --dist worksteal --durations=15
 
 stress: $(STAMP)
-	$(PY) -m pytest -m "stress or sweep"
+	$(PY) -m pytest -m "stress or sweep" -n auto --maxprocesses=4 --dist worksteal --durations=15
 
 bench: $(STAMP)
 	$(PY) -m pip install --disable-pip-version-check -q -r requirements-bench.txt

@@ -1,6 +1,8 @@
 """One Blender session for the whole run: isolated user directory, the working tree
 installed as extension bl_ext.local.sandscape, and an empty file before every test."""
 
+import contextlib
+import fcntl
 import pathlib
 import sys
 
@@ -50,14 +52,23 @@ def eevee_scene():
     scene.render.resolution_x, scene.render.resolution_y = EEVEE_SIZE
     scene.render.resolution_percentage = 100
     scene.eevee.taa_render_samples = 4
-    probe = scenes.camera("PERSP")
-    try:
-        readback.render(scene)
-    except RuntimeError as error:  # no OpenGL context: EEVEE cannot draw
-        pytest.skip(f"EEVEE cannot render here (no OpenGL context: {error})")
-    finally:
-        bpy.data.objects.remove(probe)
+    if _EEVEE_PROBE["error"] is None and not _EEVEE_PROBE["rendered"]:
+        probe = scenes.camera("PERSP")
+        try:
+            readback.render(scene)
+            _EEVEE_PROBE["rendered"] = True
+        except RuntimeError as error:  # no OpenGL context: EEVEE cannot draw
+            _EEVEE_PROBE["error"] = str(error)
+        finally:
+            bpy.data.objects.remove(probe)
+    if _EEVEE_PROBE["error"] is not None:
+        pytest.skip(f"EEVEE cannot render here (no OpenGL context: {_EEVEE_PROBE['error']})")
     return scene
+
+
+# Whether this worker's Blender could make an OpenGL context: probed by one render, once (a probe
+# per test cost 2-4 s each, about 50 s of the suite).
+_EEVEE_PROBE = {"rendered": False, "error": None}
 
 
 @pytest.fixture
@@ -77,17 +88,34 @@ def demo_files(tmp_path_factory):
     """The demo built once for the run and saved twice: as built (the committed demo.blend's
     counterpart) and with its clouds on 200 m voxels, which most tests open: the demo's 50 m grid
     took 5 s to evaluate at every opening and 6 s of every render after a change to the view
-    layer. Building takes seconds, opening one."""
-    session.reset()
-    assert bpy.ops.sandscape.build_demo_scene() == {"FINISHED"}
-    folder = tmp_path_factory.mktemp("demo")
-    built = folder / "built.blend"
-    bpy.ops.wm.save_as_mainfile(filepath=str(built), copy=True)
-    bpy.context.scene.sandscape_clouds.voxel = 200.0
-    assert bpy.ops.sandscape.add_clouds() == {"FINISHED"}
-    coarse = folder / "demo.blend"
-    bpy.ops.wm.save_as_mainfile(filepath=str(coarse), copy=True)
-    return {"built": built, "coarse": coarse}
+    layer. Building takes 12-25 s, opening one. Under xdist every worker is a session of its own:
+    the first to need the demo builds it for all (a lock in the run's shared temporary folder),
+    the others wait for it and open its files."""
+    with built_once(tmp_path_factory, "demo") as (folder, to_build):
+        files = {"built": folder / "built.blend", "coarse": folder / "demo.blend"}
+        if to_build:
+            session.reset()
+            assert bpy.ops.sandscape.build_demo_scene() == {"FINISHED"}
+            bpy.ops.wm.save_as_mainfile(filepath=str(files["built"]), copy=True)
+            bpy.context.scene.sandscape_clouds.voxel = 200.0
+            assert bpy.ops.sandscape.add_clouds() == {"FINISHED"}
+            bpy.ops.wm.save_as_mainfile(filepath=str(files["coarse"]), copy=True)
+    return files
+
+
+@contextlib.contextmanager
+def built_once(tmp_path_factory, name):
+    """(A folder the run's workers share, whether this one is to fill it): the first worker to get
+    the lock fills it, the others wait and find it filled. A fill that fails leaves it unfilled."""
+    base = tmp_path_factory.getbasetemp()
+    shared = base.parent if base.name.startswith("popen-gw") else base  # xdist: one per worker
+    folder = shared / f"{name}-shared"
+    folder.mkdir(exist_ok=True)
+    with open(shared / f"{name}-shared.lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        done = folder / "done"
+        yield folder, not done.exists()
+        done.touch()
 
 
 @pytest.fixture

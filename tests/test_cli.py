@@ -6,6 +6,7 @@ import subprocess
 import sys
 
 import pytest
+from conftest import built_once
 
 REPO = pathlib.Path(__file__).resolve().parent.parent
 CLI = [sys.executable, str(REPO / "devtools" / "cli.py")]
@@ -23,11 +24,13 @@ def test_help(command):
 
 @pytest.fixture(scope="module")
 def blend(tmp_path_factory):
-    """A saved demo, built once for the module."""
-    path = tmp_path_factory.mktemp("cli") / "demo.blend"
-    built = run("build-demo", "--output", str(path))
-    assert built.returncode == 0 and path.is_file(), built.stderr
-    assert "sandscape: saved" in built.stdout
+    """A demo saved by the command line, built once for the run's workers."""
+    with built_once(tmp_path_factory, "cli-demo") as (folder, to_build):
+        path = folder / "demo.blend"
+        if to_build:
+            built = run("build-demo", "--output", str(path))
+            assert built.returncode == 0 and path.is_file(), built.stderr
+            assert "sandscape: saved" in built.stdout
     return path
 
 

@@ -65,9 +65,11 @@ def _render(scene):
     return readback.render(scene)[..., :3].astype(np.float64)
 
 
-# The low sun in make stress (37 s on software OpenGL; make test went past its 10 minutes).
+# Both suns in make stress (37-44 s each on software OpenGL; make test went past its 10 minutes):
+# make test checks the balance through test_eevee.py's sand brightness against Cycles.
 @pytest.mark.parametrize("elevation,azimuth,wall_distance",
-                         [pytest.param(15.0, 150.0, 12.0, marks=pytest.mark.sweep), (50.0, 330.0, 4.0)])
+                         [pytest.param(15.0, 150.0, 12.0, marks=pytest.mark.sweep),
+                          pytest.param(50.0, 330.0, 4.0, marks=pytest.mark.sweep)])
 def test_the_balance_leaves_the_shade_as_eevee_lights_it(eevee_scene, sandscape, elevation, azimuth,
                                                          wall_distance):
     """Sand under a 15 degree sun behind the camera (where the balance is largest) or a 50 degree
@@ -100,6 +102,7 @@ def test_the_balance_leaves_the_shade_as_eevee_lights_it(eevee_scene, sandscape,
     assert abs(glints_in_shade) <= GLINTS_IN_SHADE
 
 
+@pytest.mark.sweep  # make test checks the lit glints' blend on Physical Sand (test_eevee.py)
 def test_journeys_glints_keep_to_the_sun_in_eevee(eevee_scene, sandscape):
     """Journey's EEVEE output under a 15 degree sun behind the camera: its glints add at most
     GLINTS_IN_SHADE to the wall's shadow (+2.19 % before they kept to the sun, as the physical
