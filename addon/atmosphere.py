@@ -20,6 +20,7 @@ from ..node_groups import dust_field, dust_volume
 from ..node_groups import helper as h
 from . import drivers, evaluation, sand, sand_eevee, shot, sky_eevee, sky_eevee_haze, units, walker_wind
 from . import ownership as own
+from .far_haze import HAZE_KEY as FAR_HAZE_KEY
 from .far_haze import refresh as refresh_far_haze
 from .sun_lamp import ensure_sun, is_ours, scene_sun  # noqa: F401 (the atmosphere's API)
 
@@ -338,6 +339,8 @@ def apply(scene, settings):
     bounds = shot_bounds(scene, haze_reach(scene, extinction), settings.margin, ground - settings.margin)
     low, high = bounds or (geometry_low - settings.margin, geometry_high + settings.margin)
     box = ensure_volume(scene, coefficients, low, high, dust)
+    if box is not None:
+        box[FAR_HAZE_KEY] = haze  # what the far haze beyond the box takes
     # EEVEE's lighting world takes the haze's scattered sunlight (its volumes light no surface).
     # The wind's dust hugs the ground (metres), so the haze alone: it fills the box.
     if box is not None and haze > 0:

@@ -7,6 +7,8 @@ Sandscape's sky (the haze glows with the sky's colour, which only our sky gives 
 Clouds and Add Atmosphere both remake it, since it spans the one and hollows out the other.
 """
 
+import math
+
 import bpy
 import numpy as np
 from mathutils import Vector
@@ -29,12 +31,26 @@ FOLLOWED = ("sun_elevation", "sun_rotation")  # the world's sky follows the lamp
 # let a ray miss the second (it never entered the haze, and the haze changed nothing).
 CAVITY_GAP = 1e-3
 STEP_SHARE = 10.0  # the shell's step rate: its haze is even along a ray, a few steps integrate it
+# On the dust box: the haze's extinction (per scene unit) Add Atmosphere gave it. The far haze takes
+# the box's, not the settings': a visibility typed since (or out of range) has not reached the box.
+HAZE_KEY = "sandscape_haze_extinction"
 
 
 def box_bounds(box):
     """World-space (low, high) corners of the dust box (a unit cube, placed and scaled)."""
     corners = np.array([box.matrix_world @ Vector(c) for c in box.bound_box])
     return corners.min(axis=0), corners.max(axis=0)
+
+
+def box_extinction(scene, box):
+    """The haze's extinction in the dust box, per scene unit (0: no haze)."""
+    stored = box.get(HAZE_KEY)
+    if stored is not None:
+        return float(stored)
+    settings = scene.sandscape_atmosphere  # a box from before the key: the settings, if they are sound
+    visibility = settings.visibility
+    usable = settings.use_haze and math.isfinite(visibility) and visibility > 0
+    return air.haze_extinction(visibility) if usable else 0.0
 
 
 def why_not(scene):
@@ -44,7 +60,8 @@ def why_not(scene):
         return "no cloud layer"
     if REGION_KEY not in layer or BASE_KEY not in layer:  # made by a Sandscape without the far haze
         return "the cloud layer predates the far haze: run Add Clouds again"
-    if own.scene_object(scene, own.DUST_VOLUME) is None or not scene.sandscape_atmosphere.use_haze:
+    box = own.scene_object(scene, own.DUST_VOLUME)
+    if box is None or not box_extinction(scene, box) > 0:
         return "no haze (Add Atmosphere with Haze on)"
     world = own.scene_world(scene)
     if world is None or own.node(world.node_tree, SKY_NODE) is None:
@@ -78,7 +95,7 @@ def refresh(scene):
         return None, reason
     shell = ensure_object(scene)
     own.set_mesh(shell, *mesh)
-    beta = air.haze_extinction(scene.sandscape_atmosphere.visibility)  # per scene unit
+    beta = box_extinction(scene, box)
     build_material(shell.active_material, own.scene_world(scene), beta)
     return shell, None
 

@@ -136,6 +136,18 @@ def test_one_far_haze_follows_the_box_and_goes_with_the_clouds(sandscape):
     assert _ours() == []
 
 
+@pytest.mark.parametrize("typed", [0.0, math.nan, -math.inf])
+def test_a_visibility_typed_since_leaves_the_far_haze_as_the_box_has_it(sandscape, typed):
+    """The field typed out of range after Add Atmosphere (its check refuses it there): Add Clouds
+    still runs, without a traceback (it raised one), and the far haze keeps the box's haze."""
+    scene, _camera, _markers = _hazy_scene()
+    scene.sandscape_atmosphere.visibility = typed
+    assert bpy.ops.sandscape.add_clouds() == {"FINISHED"}
+    shell = _shell()
+    extinction = shell.active_material.node_tree.nodes["Sandscape Haze Extinction"].inputs["Density"]
+    assert extinction.default_value == pytest.approx(air.haze_extinction(VISIBILITY))
+
+
 def test_an_artists_own_world_gets_no_far_haze_and_the_report_says_why(sandscape):
     world = bpy.data.worlds.new("Artist Sky")
     world.node_tree.nodes["Background"].inputs["Color"].default_value = (0.3, 0.4, 0.6, 1.0)
