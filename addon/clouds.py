@@ -266,6 +266,12 @@ def plan(scene, s, image=None):
         while math.prod(done["box"][2]) > cloud_grid.MAX_VOXELS:  # coarser until within the budget
             done["voxel"] *= 1.02 * (math.prod(done["box"][2]) / cloud_grid.MAX_VOXELS) ** (1 / 3)
             done["box"] = cloud_grid.box_and_resolution(carried, low, high, done["voxel"])
+        while done["voxel"] != s["voxel"]:  # back down in 1 % steps: whole voxel counts overshoot
+            finer = max(done["voxel"] / 1.01, s["voxel"])
+            box = cloud_grid.box_and_resolution(carried, low, high, finer)
+            if math.prod(box[2]) > cloud_grid.MAX_VOXELS:
+                break
+            done["voxel"], done["box"] = finer, box
         done["voxels"] = math.prod(done["box"][2])
         if done["voxel"] != s["voxel"]:
             asked, used = (units.length_text(scene, v) for v in (s["voxel"], done["voxel"]))
