@@ -360,3 +360,21 @@ def apply(scene, settings):
     return {"sun": sun, "followed": followed, "elevation": elevation, "azimuth": azimuth, "world": world,
             "volume": box, "coefficients": per_metre, "exposure": exposure, "changes": changes,
             "far_haze": haze_shell}
+
+
+def clip_warning(scene, box):
+    """Why the camera sees the bare sky short of the haze, and what to change; or None. The haze
+    reaches at least the box's nearest side; Cycles ends a ray at the camera's Clip End."""
+    camera = scene.camera
+    if box is None or camera is None or camera.type != "CAMERA" or not box.get(FAR_HAZE_KEY, 0.0) > 0:
+        return None
+    bpy.context.view_layer.update()
+    where = np.array(camera.matrix_world.translation)
+    corners = np.array([box.matrix_world @ Vector(c) for c in box.bound_box])
+    low, high = corners.min(axis=0), corners.max(axis=0)
+    reach = float(np.min(np.concatenate([where[:2] - low[:2], high[:2] - where[:2]])))
+    if reach <= 0 or camera.data.clip_end >= reach:
+        return None
+    return (f"Camera '{camera.name}' clips at {units.length_text(scene, camera.data.clip_end)}, short of the "
+            f"haze, which reaches {units.length_text(scene, reach)}: past its Clip End it sees the bare sky. "
+            f"Raise its Clip End (Camera ▸ Lens) to {units.length_text(scene, reach)}")

@@ -16,7 +16,7 @@ from mathutils import Vector
 from ..core import atmosphere as air
 from ..core import far_haze as twin
 from ..node_groups import helper as h
-from . import drivers
+from . import drivers, units
 from . import ownership as own
 
 # The world's sky without its disc: a Sky Texture with a disc takes no direction, and in a
@@ -51,6 +51,19 @@ def box_extinction(scene, box):
     visibility = settings.visibility
     usable = settings.use_haze and math.isfinite(visibility) and visibility > 0
     return air.haze_extinction(visibility) if usable else 0.0
+
+
+def stale_visibility(scene):
+    """What to tell the artist when the Visibility setting is not the dust box's (typed since Add
+    Atmosphere ran, which alone applies it), or None."""
+    box = own.scene_object(scene, own.DUST_VOLUME)
+    beta = box_extinction(scene, box) if box is not None else 0.0
+    typed = scene.sandscape_atmosphere.visibility
+    if not beta > 0 or (math.isfinite(typed) and typed > 0 and math.isclose(
+            air.haze_extinction(typed), beta, rel_tol=1e-6)):
+        return None
+    shown = units.length_text(scene, air.haze_extinction(beta))  # V = 3.912 / beta, and back
+    return f"at the dust box's {shown} visibility (Visibility was changed since: Add Atmosphere applies it)"
 
 
 def why_not(scene):

@@ -75,6 +75,8 @@ class SANDSCAPE_OT_add_atmosphere(SandscapeOperator, bpy.types.Operator):
             return self.fail(problem)
         done = atmosphere.apply(scene, settings)
         self.report({"INFO"}, report_line(scene, settings, done))
+        if warning := atmosphere.clip_warning(scene, done["volume"]):
+            self.report({"WARNING"}, warning)
         if cloud_shadows.stale(scene):  # made for the sun as it was
             if clouds.refresh_shadows(scene):
                 self.report({"INFO"}, "EEVEE's cloud shadows remade for this sun")

@@ -2,7 +2,7 @@
 
 import bpy
 
-from ..addon import clouds, ownership, units
+from ..addon import clouds, far_haze, ownership, units
 from ..addon.settings import CLOUD_LIMITS, cloud_fields
 from .base import SandscapeOperator, SceneSettings, editable_problem, has_camera, value_problem
 
@@ -71,7 +71,8 @@ class SANDSCAPE_OT_add_clouds(SceneSettings, SandscapeOperator, bpy.types.Operat
                     f"{values['coverage']:.2f}, {width} × {depth} of sky, {how}"
                     + (f"; EEVEE's shadow of it: a {shadows['texels'][1]} × {shadows['texels'][0]} map"
                        if (shadows := done.get("eevee_shadows")) else "")
-                    + ("; hazed from the dust box out to the clouds" if done["far_haze"] else
+                    + ("; hazed from the dust box out to the clouds" + (f" {stale}" if (
+                        stale := far_haze.stale_visibility(scene)) else "") if done["far_haze"] else
                        f"; far clouds not hazed: {done['no_far_haze']}")
                     + ("; changed: " + "; ".join(done["changes"]) if done["changes"] else ""))
         if done["warning"]:

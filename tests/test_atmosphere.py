@@ -282,3 +282,22 @@ def test_a_turned_camera_and_another_frame_size_see_no_edge_of_the_dust_box():
             exits = np.where(direction[:2] > 0, (high[:2] - origin[:2]) / direction[:2],
                              (low[:2] - origin[:2]) / direction[:2])
         assert exits.min() >= reach - 1e-3
+
+
+def test_a_camera_that_clips_short_of_the_haze_is_warned():
+    """Blender's new camera ends its rays at 100 m, where Add Atmosphere's haze reaches kilometres:
+    past that the frame shows the bare sky. The report says so and what to raise Clip End to."""
+    from devtools import operators
+
+    bpy.ops.mesh.primitive_plane_add(size=200.0)
+    scenes.camera("PERSP", location=(0.0, 0.0, 2.0), rotation=(math.radians(88.0), 0.0, 0.0))
+    bpy.context.scene.sandscape_atmosphere.use_haze = True
+    bpy.context.scene.sandscape_atmosphere.visibility = 10000.0
+    bpy.context.scene.camera.data.clip_end = 100.0
+    result, reports = operators.run_execute("sandscape.add_atmosphere")
+    warnings = [text for kinds, text in reports if kinds == {"WARNING"}]
+    assert result == {"FINISHED"} and len(warnings) == 1, reports
+    assert "clips at 100 m, short of the haze" in warnings[0] and "Raise its Clip End" in warnings[0]
+    bpy.context.scene.camera.data.clip_end = 50000.0
+    result, reports = operators.run_execute("sandscape.add_atmosphere")
+    assert result == {"FINISHED"} and not [text for kinds, text in reports if kinds == {"WARNING"}], reports

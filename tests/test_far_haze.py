@@ -16,7 +16,7 @@ import pytest
 
 from core import atmosphere as air
 from core import far_haze as twin
-from devtools import readback, scenes, session
+from devtools import operators, readback, scenes, session
 from tests.test_aerial_perspective import inside_pixels, marker
 
 VISIBILITY = 4000.0  # m: the dust box then ends about 4.6 km out
@@ -139,10 +139,14 @@ def test_one_far_haze_follows_the_box_and_goes_with_the_clouds(sandscape):
 @pytest.mark.parametrize("typed", [0.0, math.nan, -math.inf])
 def test_a_visibility_typed_since_leaves_the_far_haze_as_the_box_has_it(sandscape, typed):
     """The field typed out of range after Add Atmosphere (its check refuses it there): Add Clouds
-    still runs, without a traceback (it raised one), and the far haze keeps the box's haze."""
+    still runs, without a traceback (it raised one), the far haze keeps the box's haze, and the
+    report says which visibility it has."""
     scene, _camera, _markers = _hazy_scene()
+    assert sandscape.addon.far_haze.stale_visibility(scene) is None
     scene.sandscape_atmosphere.visibility = typed
-    assert bpy.ops.sandscape.add_clouds() == {"FINISHED"}
+    result, reports = operators.run_execute("sandscape.add_clouds")
+    assert result == {"FINISHED"}
+    assert "at the dust box's 4 km visibility (Visibility was changed since" in reports[0][1], reports
     shell = _shell()
     extinction = shell.active_material.node_tree.nodes["Sandscape Haze Extinction"].inputs["Density"]
     assert extinction.default_value == pytest.approx(air.haze_extinction(VISIBILITY))
