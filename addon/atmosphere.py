@@ -21,6 +21,7 @@ from ..node_groups import helper as h
 from . import drivers, evaluation, sand, sand_eevee, shot, sky_eevee, sky_eevee_haze, units, walker_wind
 from . import ownership as own
 from .far_haze import HAZE_KEY as FAR_HAZE_KEY
+from .far_haze import box_bounds
 from .far_haze import refresh as refresh_far_haze
 from .sun_lamp import ensure_sun, is_ours, scene_sun  # noqa: F401 (the atmosphere's API)
 
@@ -370,8 +371,7 @@ def clip_warning(scene, box):
         return None
     bpy.context.view_layer.update()
     where = np.array(camera.matrix_world.translation)
-    corners = np.array([box.matrix_world @ Vector(c) for c in box.bound_box])
-    low, high = corners.min(axis=0), corners.max(axis=0)
+    low, high = box_bounds(box)
     reach = float(np.min(np.concatenate([where[:2] - low[:2], high[:2] - where[:2]])))
     if reach <= 0 or camera.data.clip_end >= reach:
         return None

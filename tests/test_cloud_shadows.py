@@ -61,6 +61,7 @@ def _caster(scene):
     return next((o for o in scene.objects if o.get("sandscape_object") == "cloud_shadows"), None)
 
 
+@pytest.mark.sweep  # 60-70 s with EEVEE's first render; the map's own checks stay in make test
 def test_eevee_shades_the_ground_under_the_clouds_as_cycles_does(eevee_scene):
     """Ground seen from above under Add Clouds' grid and a sun at 40 degrees, a black sky: the
     light let through, pixel by pixel, in EEVEE (through the shadow layer) against Cycles (through

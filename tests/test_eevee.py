@@ -18,6 +18,7 @@ WALL_TOLERANCE = 0.20  # per channel: a wall in shade, lit by the sky and the sa
 WALL_TOLERANCE_DERUNG = 0.45  # the same where EEVEE's deringing caps the sand's light (below)
 
 
+@pytest.mark.sweep  # 24-42 s of software OpenGL; Cycles' own check stays in make test
 def test_god_rays_shine_from_the_sun_in_eevee(eevee_scene, sandscape):
     """The driven sun place and the rays work on EEVEE's own passes: the rays' glow peaks where
     Blender projects the sun."""
@@ -44,6 +45,7 @@ def test_god_rays_shine_from_the_sun_in_eevee(eevee_scene, sandscape):
     assert abs((col + 0.5) / SIZE[0] - u) < 0.08 and abs((row + 0.5) / SIZE[1] - v) < 0.12
 
 
+@pytest.mark.sweep  # 24-42 s of software OpenGL; Cycles' own check stays in make test
 def test_prints_displace_in_eevee(eevee_scene, sandscape):
     """A painted trail renders in EEVEE (it never finished while the print map was one Linear
     lookup: EEVEE reads displacement in the vertex stage, where software OpenGL's linear filtering
