@@ -67,13 +67,16 @@ class SANDSCAPE_OT_add_clouds(SceneSettings, SandscapeOperator, bpy.types.Operat
             how = "procedural"
         width = units.length_text(scene, done["region"][2] - done["region"][0])
         depth = units.length_text(scene, done["region"][3] - done["region"][1])
+        if done["far_haze"]:
+            stale = far_haze.stale_visibility(scene)
+            hazed = "; hazed from the dust box out to the clouds" + (f" {stale}" if stale else "")
+        else:
+            hazed = f"; far clouds not hazed: {done['no_far_haze']}"
         self.report({"INFO"}, f"Cloud layer '{done['layer'].name}': {values['cloud_type'].lower()}, coverage "
                     f"{values['coverage']:.2f}, {width} × {depth} of sky, {how}"
                     + (f"; EEVEE's shadow of it: a {shadows['texels'][1]} × {shadows['texels'][0]} map"
                        if (shadows := done.get("eevee_shadows")) else "")
-                    + ("; hazed from the dust box out to the clouds" + (f" {stale}" if (
-                        stale := far_haze.stale_visibility(scene)) else "") if done["far_haze"] else
-                       f"; far clouds not hazed: {done['no_far_haze']}")
+                    + hazed
                     + ("; changed: " + "; ".join(done["changes"]) if done["changes"] else ""))
         if done["warning"]:
             self.report({"WARNING"}, done["warning"])
