@@ -1,15 +1,16 @@
 """Sandscape Glint Splat: each sparkle of the pixel-sized cells put into the pixels round its point,
 the same for every sample of a pixel, so glint pixels converge as fast as the sand around them.
 
-A cell's sparkle is a point on the surface (its lattice point, on a lattice of the object's plane
-the normal leans least from); the pixel it falls in takes its light, shared with the next pixels
-near its edge by a smoothstep (their shares sum to one, so a sparkle moving across the screen glides
-rather than jumps). Every sample of a pixel finds the same cells and shares: the pixel's
-centre is found on the tangent plane from the Window coordinate, and the screen offset of a cell
-from it by the pixel's footprint (the derivatives of the surface point across the screen). Cells
-are at least the pixel's reach on the lattice, so at most two per axis fall within one pixel of the
-centre: four candidates. A cell glints as Sandscape Glint Cells' cells do (one of its grains would)
-and is mirror over its grains' share, but no more than a whole pixel of it.
+A cell's sparkle is a point on the surface, jittered round its lattice point (on a lattice of the
+object's plane the normal leans least from) so sparkles scatter rather than line up; the pixel it
+falls in takes its light, shared with the next pixels near its edge by a smoothstep (their shares sum
+to one, so a sparkle moving across the screen glides rather than jumps). Every sample of a pixel
+finds the same cells and shares: the pixel's centre is found on the tangent plane from the Window
+coordinate, and the screen offset of a cell's point from it by the pixel's footprint (the derivatives
+of the surface point across the screen). Cells are large enough for the pixel's reach and the jitter
+that at most two per axis have a point that can fall in the pixel: four candidates. A cell glints as
+Sandscape Glint Cells' cells do (one of its grains would) and is mirror over its grains' share, but
+no more than a whole pixel of it.
 Inactive (no render camera, a panoramic one, or no resolution): Sandscape Lit Glints falls back to
 the cells. Twin: core.glint_splat.
 """
@@ -20,7 +21,7 @@ from . import glint_cells
 from . import helper as h
 
 NAME = "Sandscape Glint Splat"
-VERSION = 3
+VERSION = 4
 TREE_TYPE = "ShaderNodeTree"
 DESCRIPTION = ("Sparkles as points put into the pixels round them, the same for every sample of a pixel: "
                "the four cells that can reach this pixel, their noise, tilt and share of it")
@@ -185,11 +186,13 @@ def build(tree):
     axis_code = n.m("MULTIPLY_ADD", y_up, 2.0, c=x_up, label="Axis Code")
     frame_nodes = [*n.take(), geometry]
 
-    # Level: cells at least the pixel's reach (one pixel each way) on each lattice axis.
+    # Level: cells at least CELL_REACH x the pixel's reach (one pixel each way) on each lattice axis,
+    # so a cell's jittered point reaches the pixel only from the two nearest cells per axis.
     reach_a = n.m("ADD", n.m("ABSOLUTE", ua), n.m("ABSOLUTE", va), label="Reach A")
     reach_b = n.m("ADD", n.m("ABSOLUTE", ub), n.m("ABSOLUTE", vb), label="Reach B")
     reach = n.m("MAXIMUM", reach_a, reach_b, label="Reach")
-    log = n.m("LOGARITHM", n.m("DIVIDE", reach, inputs["Glint Size"]), 2.0, label="log2(Reach / Size)")
+    log = n.m("LOGARITHM", n.m("DIVIDE", n.m("MULTIPLY", reach, twin.CELL_REACH), inputs["Glint Size"]), 2.0,
+              label="log2(Cell Reach / Size)")
     level = n.m("MINIMUM", n.m("MAXIMUM", n.m("CEIL", log), float(cells_twin.LEVELS[0])),
                 float(cells_twin.LEVELS[1]), label="Level")
     cell = n.m("MULTIPLY", n.m("POWER", 2.0, level), inputs["Glint Size"], label="Cell Size")
@@ -206,8 +209,10 @@ def build(tree):
     mirror = n.m("MINIMUM", mirror, 1.0, label="At Most a Pixel")
     det = n.m("SUBTRACT", n.m("MULTIPLY", ua, vb), n.m("MULTIPLY", ub, va), label="Det")
     det = n.m("ADD", det, n.m("MULTIPLY", n.m("COMPARE", det, 0.0, c=0.0), 1e-30), label="Det ≠ 0")
-    starts = [n.m("ADD", n.m("FLOOR", n.m("DIVIDE", n.m("SUBTRACT", at, far), cell)), 1.0, label="First Cell")
+    spread = n.m("MULTIPLY", cell, twin.JITTER / 2, label="Jitter Each Way")
+    lowest = [n.m("SUBTRACT", n.m("MULTIPLY_ADD", far, -twin.TENT_REACH, c=at), spread, label="Lowest Reach")
               for at, far in ((ca, reach_a), (cb, reach_b))]
+    starts = [n.m("ADD", n.m("FLOOR", n.m("DIVIDE", low, cell)), 1.0, label="First Cell") for low in lowest]
     seed = n.m("MULTIPLY_ADD", level, cells_twin.LEVEL_SEED, c=inputs["Seed"], label="Seed of the Level")
     resolution = n.m("MINIMUM", inputs["Resolution X"], inputs["Resolution Y"])
     pixel = n.m("MAXIMUM", inputs["Pixel Angle"], inputs["Pixel Size"])
@@ -219,8 +224,16 @@ def build(tree):
     for k, (di, dj) in zip(CANDIDATES, twin.OFFSETS, strict=True):
         i = n.m("ADD", starts[0], float(di), label=f"Cell {k} A")
         j = n.m("ADD", starts[1], float(dj), label=f"Cell {k} B")
-        offsets = [n.m("SUBTRACT", n.m("MULTIPLY", index, cell), at, label="From the Centre")
-                   for index, at in ((i, ca), (j, cb))]
+        cell_vector = n.combine(i, j, axis_code, "Cell")
+        jitter = n.node("ShaderNodeTexWhiteNoise", label=f"Jitter {k}", noise_dimensions="4D")
+        h.link(tree, cell_vector, jitter.inputs["Vector"])
+        h.link(tree, n.m("ADD", seed, twin.JITTER_SEED, label="Seed of the Jitter"), jitter.inputs["W"])
+        jitter_parts = n.node("ShaderNodeSeparateColor")
+        h.link(tree, jitter.outputs["Color"], jitter_parts.inputs["Color"])
+        points = [n.m("MULTIPLY_ADD", n.m("SUBTRACT", jitter_parts.outputs[c], 0.5), twin.JITTER, c=index,
+                      label="Jittered Point") for c, index in ((0, i), (1, j))]
+        offsets = [n.m("SUBTRACT", n.m("MULTIPLY", point, cell), at, label="From the Centre")
+                   for point, at in ((points[0], ca), (points[1], cb))]
         across = n.m("SUBTRACT", n.m("MULTIPLY", offsets[0], vb), n.m("MULTIPLY", offsets[1], va))
         du = n.m("DIVIDE", across, det, label="Pixels Across")
         up = n.m("SUBTRACT", n.m("MULTIPLY", ua, offsets[1]), n.m("MULTIPLY", ub, offsets[0]))
@@ -234,7 +247,7 @@ def build(tree):
             tent.inputs["To Min"].default_value, tent.inputs["To Max"].default_value = 1.0, 0.0
             tents.append(tent.outputs["Result"])
         noise = n.node("ShaderNodeTexWhiteNoise", label=f"Noise {k}", noise_dimensions="4D")
-        h.link(tree, n.combine(i, j, axis_code, "Cell"), noise.inputs["Vector"])
+        h.link(tree, cell_vector, noise.inputs["Vector"])
         h.link(tree, seed, noise.inputs["W"])
         lit = n.m("GREATER_THAN", noise.outputs["Value"], threshold, label="Can Glint")
         share_k = n.m("MULTIPLY", n.m("MULTIPLY", tents[0], tents[1]), n.m("MULTIPLY", lit, mirror),
