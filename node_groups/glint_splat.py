@@ -214,6 +214,7 @@ def build(tree):
               for at, far in ((ca, reach_a), (cb, reach_b))]
     starts = [n.m("ADD", n.m("FLOOR", n.m("DIVIDE", low, cell)), 1.0, label="First Cell") for low in lowest]
     seed = n.m("MULTIPLY_ADD", level, cells_twin.LEVEL_SEED, c=inputs["Seed"], label="Seed of the Level")
+    jitter_seed = n.m("ADD", seed, twin.JITTER_SEED, label="Seed of the Jitter")
     resolution = n.m("MINIMUM", inputs["Resolution X"], inputs["Resolution Y"])
     pixel = n.m("MAXIMUM", inputs["Pixel Angle"], inputs["Pixel Size"])
     active = n.m("MULTIPLY", n.m("GREATER_THAN", resolution, 0.0), n.m("GREATER_THAN", pixel, 0.0),
@@ -227,7 +228,7 @@ def build(tree):
         cell_vector = n.combine(i, j, axis_code, "Cell")
         jitter = n.node("ShaderNodeTexWhiteNoise", label=f"Jitter {k}", noise_dimensions="4D")
         h.link(tree, cell_vector, jitter.inputs["Vector"])
-        h.link(tree, n.m("ADD", seed, twin.JITTER_SEED, label="Seed of the Jitter"), jitter.inputs["W"])
+        h.link(tree, jitter_seed, jitter.inputs["W"])
         jitter_parts = n.node("ShaderNodeSeparateColor")
         h.link(tree, jitter.outputs["Color"], jitter_parts.inputs["Color"])
         points = [n.m("MULTIPLY_ADD", n.m("SUBTRACT", jitter_parts.outputs[c], 0.5), twin.JITTER, c=index,
