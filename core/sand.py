@@ -4,6 +4,8 @@ glint_facets        <-> "Sandscape Glint Facet" / "Sandscape Lit Glints": which 
                         and which way each grain's mirror facet faces
 mirrors_view_above  <-> "Sandscape Glint Facet": whether a facet's mirror is seen (the view it
                         mirrors leaves the surface)
+facet_fresnel       <-> "Sandscape Glint Facet": the share of the light a quartz facet's mirror
+                        reflects at its angle (Fresnel's equations, through Snell's law)
 sand_normal         <-> "Sandscape Sand Normal": the surface normal nudged towards a random
                         direction per grain (Journey's sand normal, an nlerp)
 journey_contrast        the seed's own diffuse contrast, saturate(4 N'.L), N' the normal with
@@ -30,6 +32,7 @@ TOON_SIZE = 0.839  # acos(0.25) over pi / 2: fully lit where N'.L reaches 0.25, 
 SQUASH = 0.3  # Journey's factor on the normal's vertical component
 SAND_COLOR = (0.62, 0.45, 0.27, 1.0)  # linear albedo of both looks (a warm quartz sand)
 REPOSE = np.radians(35.0)  # the slope at which ripples keep their Steep Fraction
+QUARTZ_IOR = 1.54  # a sand grain's facet: about 4.5 % of the light face-on, all of it at grazing
 
 
 def _unit(v):
@@ -73,6 +76,19 @@ def mirrors_view_above(facet, normal, view):
     f_n = np.sum(np.asarray(facet, np.float64) * np.asarray(normal, np.float64), axis=-1)
     v_n = np.sum(np.asarray(view, np.float64) * np.asarray(normal, np.float64), axis=-1)
     return (2.0 * f_v * f_n - v_n > 0.0).astype(F32)
+
+
+def facet_fresnel(cos_incidence, ior=QUARTZ_IOR):
+    """Unpolarised Fresnel reflectance of a dielectric facet lit at `cos_incidence` (its normal
+    against the view, which its mirror shares with the light it reflects): the mean of the s and
+    p reflectances, the refracted angle from Snell's law (total reflection: 1)."""
+    cos_i = np.clip(np.abs(np.asarray(cos_incidence, np.float64)), 0.0, 1.0)
+    sin_t = np.sqrt(1.0 - cos_i * cos_i) / ior
+    total = sin_t >= 1.0
+    cos_t = np.sqrt(np.maximum(1.0 - sin_t * sin_t, 0.0))
+    r_s = (cos_i - ior * cos_t) / np.maximum(cos_i + ior * cos_t, 1e-300)
+    r_p = (ior * cos_i - cos_t) / np.maximum(ior * cos_i + cos_t, 1e-300)
+    return np.where(total, 1.0, 0.5 * (r_s * r_s + r_p * r_p))
 
 
 def sand_normal(normal, grain, strength):

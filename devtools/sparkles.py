@@ -34,7 +34,7 @@ def sparkling_sand(sandscape, resolution, filtered=True, samples=16, seed=0, sha
         roof.scale = (100.0, 400.0, 1.0)
         roof.visible_camera = False
     bpy.context.view_layer.objects.active = ground
-    bpy.ops.sandscape.add_sand_material(ripples=False, threshold=0.97, glint_size=0.04, facing_power=4.0)
+    bpy.ops.sandscape.add_sand_material(ripples=False, threshold=0.9, glint_size=0.04, facing_power=4.0)
     if not filtered:
         node = sandscape.addon.sand.glint_node(ground.active_material)
         for name in ("Pixel Angle", "Pixel Size"):

@@ -5,16 +5,20 @@ surface normal by a random Tilt, at most as far as Facing Power allows: the face
 where a light reaches it and its mirror sends that light to the camera, so shadows, the sun's
 colour and its height apply by construction. The facet's mirror comes on top of the Base shader
 (the grain still scatters light as sand does: a mirror in its place showed the darker sky as dark
-specks on sunlit sand). A facet whose mirror would send the view below the surface adds nothing:
-the grains around it hide what it mirrors (EEVEE would show the world under the horizon there).
-Twin: core.sand.glint_facets (mask and facet normal).
+specks on sunlit sand). The mirror reflects the share of the light Fresnel's equations give a
+quartz facet at its angle (IOR): a few percent face-on, so a facet mirroring the sky in shade
+adds little to its sand, while one turning the sun to the camera still outshines it. A facet
+whose mirror would send the view below the surface adds nothing: the grains around it hide what
+it mirrors (EEVEE would show the world under the horizon there).
+Twins: core.sand.glint_facets (mask and facet normal), core.sand.facet_fresnel (the mirror's
+share).
 """
 
 from ..core import sand
 from . import helper as h
 
 NAME = "Sandscape Glint Facet"
-VERSION = 5
+VERSION = 6
 TREE_TYPE = "ShaderNodeTree"
 DESCRIPTION = ("A glinting grain's mirror facet: Noise above Threshold adds a sharp glossy facet, tilted "
                "by Tilt within the spread Facing Power allows, on top of Base")
@@ -38,6 +42,9 @@ INPUTS = {  # name -> (type, description, default, min, max, subtype); append on
                (0.0, 0.0, 0.0), None, None, h.SURFACE_NORMAL),
     "Coverage": ("NodeSocketFloat", "Share of a glinting grain's area that is mirror (a coarse cell that "
                  "stands for many grains is mostly sand)", 1.0, 0.0, 1.0, "FACTOR"),
+    "IOR": ("NodeSocketFloat", "Index of refraction of a facet: its mirror reflects the Fresnel share of "
+            "the light at its angle (quartz 1.54: about 5 % face-on, all of it at grazing)",
+            sand.QUARTZ_IOR, 1.0, 10.0, None),
 }
 OUTPUTS = {
     "Shader": ("NodeSocketShader", "Base, with the mirror facets of glinting grains on top"),
@@ -79,8 +86,14 @@ def build(tree):
     tilted = h.vector_math(tree, "ADD", normal, lean.outputs[0], label="Normal + Lean")
     facet = h.vector_math(tree, "NORMALIZE", tilted.outputs[0], label="Facet Normal")
 
+    # A dielectric's reflectance at the facet's angle to the view (its mirror's angle to the light).
+    fresnel = h.add_node(tree, "ShaderNodeFresnel", label="Facet Fresnel")
+    h.link(tree, inputs["IOR"], fresnel.inputs["IOR"])
+    h.link(tree, facet.outputs[0], fresnel.inputs["Normal"])
+    reflectance = h.vector_math(tree, "SCALE", inputs["Color"], label="Color × Fresnel")
+    h.link(tree, fresnel.outputs["Fac"], reflectance.inputs["Scale"])
     mirror = h.add_node(tree, "ShaderNodeBsdfGlossy", label="Facet Mirror", distribution="GGX")
-    h.link(tree, inputs["Color"], mirror.inputs["Color"])
+    h.link(tree, reflectance.outputs[0], mirror.inputs["Color"])
     h.link(tree, inputs["Roughness"], mirror.inputs["Roughness"])
     h.link(tree, facet.outputs[0], mirror.inputs["Normal"])
     above, above_nodes = _mirrors_above(tree, facet.outputs[0], normal)
@@ -102,7 +115,8 @@ def build(tree):
     h.frame(tree, "Surface Normal", normal_nodes)
     h.frame(tree, "Which Grains", (lit,))
     h.frame(tree, "How Far a Facet Leans", (power, inverse, half_cos, cosine, squared, sine_sq, sine, spread))
-    h.frame(tree, "Facet", (centred, up, upright, sideways, lean, tilted, facet, mirror))
+    h.frame(tree, "Facet", (centred, up, upright, sideways, lean, tilted, facet, fresnel, reflectance,
+                            mirror))
     h.frame(tree, "Mirrors the View Above the Surface", above_nodes)
     h.frame(tree, "Mirror on the Grain", (can, covered, shown, mix))
     h.arrange(tree)

@@ -14,7 +14,7 @@ from . import glint_cells, glint_facet, glint_splat
 from . import helper as h
 
 NAME = "Sandscape Lit Glints"
-VERSION = 7
+VERSION = 8
 TREE_TYPE = "ShaderNodeTree"
 DESCRIPTION = ("Sparkling sand lit by the sun: cells of grains sized to the pixel's footprint, a seeded "
                "random value per cell, mirror facets above Threshold that glint only where light "
@@ -22,9 +22,9 @@ DESCRIPTION = ("Sparkling sand lit by the sun: cells of grains sized to the pixe
 
 INPUTS = {**glint_facet.INPUTS, **glint_cells.INPUTS, **glint_splat.INPUTS}
 SOCKETS = ("Base", "Threshold", "Glint Size", "Facing Power", "Color", "Roughness", "Seed", "Normal",
-           "Pixel Angle", "Pixel Size", "Resolution X", "Resolution Y")
+           "Pixel Angle", "Pixel Size", "Resolution X", "Resolution Y", "IOR")
 CELL_SOCKETS = ("Glint Size", "Seed", "Threshold", "Pixel Angle", "Pixel Size")
-FACET_SOCKETS = ("Facing Power", "Color", "Roughness", "Normal")
+FACET_SOCKETS = ("Facing Power", "Color", "Roughness", "Normal", "IOR")
 
 
 def build(tree):
@@ -47,7 +47,7 @@ def build(tree):
     color = h.vector_math(tree, "SCALE", inputs["Color"], label="Color × Boost")
     h.link(tree, boost.outputs[0], color.inputs["Scale"])
     h.link(tree, color.outputs[0], facet.inputs["Color"])
-    for name in ("Base", "Facing Power", "Roughness", "Normal"):
+    for name in ("Base", "Facing Power", "Roughness", "Normal", "IOR"):
         h.link(tree, inputs[name], facet.inputs[name])
     mask = h.math(tree, "MULTIPLY", facet.outputs["Mask"], cells.outputs["Weight"], label="Mask × Weight")
     h.frame(tree, "Cells Sized to the Pixel (no render camera)", (cells,))

@@ -7,7 +7,7 @@ import math
 
 import bpy
 import numpy as np
-from test_lit_glints import glinting_ground
+from test_lit_glints import MIRROR_IOR, glinting_ground
 
 from devtools import readback, scenes
 
@@ -16,7 +16,8 @@ RESOLUTION = (96, 96)
 
 
 def sparkle_scene(sandscape):
-    glinting_ground(sandscape, threshold=0.995, glint_size=0.03, facing_power=64.0)
+    # Bright sparkles (facets nearly mirrors), the hardest for a denoiser to keep.
+    glinting_ground(sandscape, ior=MIRROR_IOR, threshold=0.995, glint_size=0.03, facing_power=64.0)
     scene = readback.cycles_scene(resolution=RESOLUTION, samples=SAMPLES)
     scenes.camera("ORTHO", location=(0.0, -10.0, 10.0), rotation=(math.radians(45), 0.0, 0.0),
                   ortho_scale=5.0)

@@ -139,10 +139,10 @@ def test_no_glint_facet_mirrors_the_world_under_the_horizon(eevee_scene, sandsca
 def test_glints_in_the_sun_and_the_shade_in_eevee(eevee_scene, sandscape, glints):
     """The Cycles test's scene in EEVEE: lit glints sparkle where the sun reaches and not in the
     roof's shadow; emission glints (the test can tell) sparkle in both."""
-    from test_lit_glints import glinting_ground, glints_half_in_shadow
+    from test_lit_glints import MIRROR_IOR, glinting_ground, glints_half_in_shadow
 
-    if glints == "LIT":
-        glinting_ground(sandscape, threshold=0.7, glint_size=0.15, facing_power=64.0)
+    if glints == "LIT":  # where they shine, not how bright: facets nearly mirrors
+        glinting_ground(sandscape, ior=MIRROR_IOR, threshold=0.7, glint_size=0.15, facing_power=64.0)
     else:
         glinting_ground(sandscape, glints="EMISSION", threshold=0.7, glint_size=0.15, facing_power=0.0,
                         strength=600.0)

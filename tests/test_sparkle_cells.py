@@ -105,7 +105,7 @@ def test_without_the_footprint_grains_make_blocks(sandscape):
     span several pixels."""
     sizes = sparkles.sparkle_sizes(readback.render(sparkles.sparkling_sand(sandscape, (320, 180), False)))
     print(f"unfiltered: {sizes.size} sparkles, {sizes.mean():.2f} px each, largest {sizes.max()}")
-    assert sizes.mean() >= PINPOINT + 0.3 and sizes.max() >= 6
+    assert sizes.mean() >= PINPOINT + 0.3 and np.mean(sizes >= 4) > 0.05
 
 
 def test_in_shade_a_facet_mirrors_the_sky_no_brighter_than_sunlit_sand(sandscape):
