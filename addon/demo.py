@@ -55,7 +55,9 @@ CLOUDS = {"coverage": 0.4, "seed": 51, "base": 1200.0, "thickness": 1200.0, "ste
 # Shot under the grey-card exposure Add Atmosphere sets, as golden hour is photographed: AgX then
 # keeps the lit sand's colour instead of rolling it toward white (a milky frame at the card's).
 EXPOSURE_SHIFT = -0.7  # stops
-PRINTS = {"depth": 0.04, "rim": 0.006}  # metres: loose dry sand, a low soft rim
+# metres: loose dry sand, a low soft rim spread wide enough that the low sun lights no razor lip
+# along it (README, Footprints)
+PRINTS = {"depth": 0.04, "rim": 0.006, "rim_width": 0.08}
 # Texels along the walk's longer side: 2.5 mm over its 20 m. The nearest print is 1.5 m from the
 # poster's camera, where 1 cm texels (2048) showed as stair-stepped facets 5 px wide on its walls.
 PRINT_TEXELS = 8192
