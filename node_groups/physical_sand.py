@@ -25,8 +25,8 @@ def build(tree):
                 0.85, 0.0, 1.0, "FACTOR")
     h.add_input(tree, "Diffuse Roughness", "NodeSocketFloat", "0 is Lambert; towards 1 the flatter, "
                 "back-scattering look of rough powder", 0.8, 0.0, 1.0, "FACTOR")
-    h.add_input(tree, "IOR", "NodeSocketFloat", "Index of refraction of the grains (quartz: 1.54)", 1.54,
-                1.0, 3.0)
+    h.add_input(tree, "IOR", "NodeSocketFloat", "Index of refraction of the grains (quartz: 1.54)",
+                sand.QUARTZ_IOR, 1.0, 3.0)
     h.add_input(tree, "Sheen", "NodeSocketFloat", "Weight of the dusty rim seen at grazing angles", 0.3,
                 0.0, 1.0, "FACTOR")
     sand_normal.add_grain_inputs(tree)
