@@ -20,14 +20,12 @@ from . import atmosphere, drivers, evaluation, sand, sun_screen
 from . import ownership as own
 from . import post_passes as passes
 from .post_glow import add_glow
+from .post_sparkles import keep_sparkles
 
 SUN_COLOR = (1.0, 0.93, 0.8, 1.0)
 DENOISE, DENOISE_VOLUME = "Sandscape Denoise", "Sandscape Denoise Scattered"
 WHITE = "Sandscape Display White"
 GLINT_AOV = sand.GLINT_AOV  # the sand material writes where grains can glint
-# A pixel is taken raw as it passes both (ratios to the ground, weight rising from 0 to 1):
-SPARKLE_BAR = (1.5, 3.0)  # its glint light
-DENOISED_BAR = (1.1, 1.3)  # its denoised self
 
 
 def display_white(scene):
@@ -132,65 +130,6 @@ def _with_blurred(tree, layers, image, volume, settings):
     return h.vector_math(tree, "ADD", image, change.outputs[0], label="+ Blur's Change").outputs[0]
 
 
-def _glint_light(tree, layers):
-    """The light the glinting grains send: glossy light where a grain was hit, and the emission
-    in Emission mode. A grain's mirror is a Glossy closure on top of the sand."""
-    glossy = h.vector_math(tree, "ADD", layers.outputs["Glossy Direct"], layers.outputs["Glossy Indirect"],
-                           label="Glossy Light")
-    # Cycles' light passes are divided by the closure colour: × Glossy Color gives the light seen.
-    seen = h.vector_math(tree, "MULTIPLY", glossy.outputs[0], layers.outputs["Glossy Color"],
-                         label="× Glossy Color")
-    lit = h.vector_math(tree, "ADD", seen.outputs[0], layers.outputs["Emission"], label="+ Emission")
-    return lit.outputs[0]
-
-
-def _sparkle_weight(tree, layers, glint, clean):
-    """How far each pixel sparkles: the glints' light against the ground around it, and what of
-    the pixel survives the denoiser.
-
-    The sand material writes where grains can glint into the AOV. OIDN takes a one-pixel sparkle
-    for noise and smears it away, so the glint light stays raw; but only where it is a sparkle:
-    the sand's own sheen and the facets that catch no sun are dim, and sampled raw they were the
-    frame's noise. The ground is the darkest denoised pixel of the 3x3 around, not the rest of
-    the raw pixel: a grain that covers most of a pixel leaves little rest, and its dim mirror was
-    kept raw as a dark speck. Two ramps (SPARKLE_BAR, DENOISED_BAR), multiplied: the glint light
-    alone let through dim grains a few samples caught, raw at two or three times their light in
-    one seed and gone in the next. The denoiser takes such a spike out and keeps most of a
-    sparkle many samples saw, so the denoised pixel must stand above the ground too. The bars
-    were chosen from measured noise and sparkle light: README, "Denoising all but the glints".
-    """
-    grains = h.math(tree, "GREATER_THAN", layers.outputs[GLINT_AOV], 0.0, label="Glinting Grains Hit")
-    glint_level = _luminance(tree, glint)
-    # The darkest denoised pixel of the 3x3 around: the ground a sparkle sits on. Not the pixel
-    # itself, which keeps most of a bright sparkle through the denoiser.
-    clean_level = _luminance(tree, clean)
-    around = h.add_node(tree, "CompositorNodeDilateErode", label="Darkest Around", inputs={"Size": -1})
-    h.link(tree, clean_level, around.inputs["Mask"])
-    ground = h.math(tree, "MAXIMUM", around.outputs["Mask"], 1e-6, label="Ground > 0")
-    outshines = _ramp(tree, glint_level, ground.outputs[0], SPARKLE_BAR, "Outshines the Ground")
-    # A grain that a few samples caught is a spike the denoiser takes out; one that many caught
-    # stays above the ground in the denoised pixel too. Only the second is a sparkle to keep raw.
-    survives = _ramp(tree, clean_level, ground.outputs[0], DENOISED_BAR, "Survives the Denoiser")
-    both = h.math(tree, "MULTIPLY", outshines, survives, label="Outshines and Survives")
-    weight = h.math(tree, "MULTIPLY", grains.outputs[0], both.outputs[0], label="Sparkle Weight")
-    return weight.outputs[0]
-
-
-def _ramp(tree, level, ground, bar, label):
-    """0 where level / ground is at most bar[0], rising to 1 at bar[1]."""
-    ratio = h.math(tree, "DIVIDE", level, ground, label=f"{label}: Ratio")
-    ramp = h.add_node(tree, "ShaderNodeMapRange", label=label,
-                      inputs={"From Min": bar[0], "From Max": bar[1], "To Min": 0.0, "To Max": 1.0})
-    h.link(tree, ratio.outputs[0], ramp.inputs["Value"])
-    return ramp.outputs["Result"]
-
-
-def _luminance(tree, color):
-    node = h.add_node(tree, "CompositorNodeRGBToBW", label="Luminance")
-    h.link(tree, color, node.inputs[0])
-    return node.outputs[0]
-
-
 def _denoise(tree, image, layers=None, name=None):
     node = h.add_node(tree, "CompositorNodeDenoise", name=name, label="Denoise (OIDN)")
     h.link(tree, image, node.inputs["Image"])
@@ -225,11 +164,7 @@ def _denoised(tree, layers, settings, image_denoised=False):
         if denoised is None:
             denoised = _denoise(tree, image, layers, DENOISE)
         clean = _with_blurred(tree, layers, denoised, volume, settings)
-    sparkling = h.add_node(tree, "ShaderNodeMix", label="Sparkles Raw", data_type="RGBA")
-    h.link(tree, _sparkle_weight(tree, layers, _glint_light(tree, layers), clean), sparkling.inputs["Factor"])
-    h.link(tree, clean, h.socket(sparkling.inputs, "A"))
-    h.link(tree, image, h.socket(sparkling.inputs, "B"))
-    return sparkling.outputs["Result"]
+    return keep_sparkles(tree, layers, image, clean)
 
 
 def _occlusion(tree, layers, sun, radius):

@@ -40,11 +40,16 @@ def test_denoising_takes_the_noise_and_keeps_the_sparkles(sandscape):
     brightness = reference.mean(-1)
     median = np.median(brightness)
     sparkles = brightness > 2.0 * median
+    # With the 3x3 round each: the tree gathers the light the pixel filter spread round a sparkle
+    # back into its pixel (test_sparkle_gather.py), from pixels under the bar too.
+    padded = np.pad(sparkles, 1)
+    h, w = sparkles.shape
+    round_them = np.any([padded[dy:dy + h, dx:dx + w] for dy in range(3) for dx in range(3)], axis=0)
     sand = brightness < 1.1 * median  # well away from any glint: the noise a denoiser can take
 
     def measures(pixels):
-        """(sparkle light kept, relative to the reference; RMSE on the plain sand)."""
-        kept = pixels.mean(-1)[sparkles].sum() / brightness[sparkles].sum()
+        """(sparkle light over the sand kept, relative to the reference; RMSE on the plain sand)."""
+        kept = (pixels.mean(-1) - median)[round_them].sum() / (brightness - median)[round_them].sum()
         return kept, math.sqrt(((pixels - reference) ** 2).mean(-1)[sand].mean())
 
     raw = measures(render(scene, SAMPLES, compositing=False))
@@ -64,7 +69,7 @@ def test_denoising_takes_the_noise_and_keeps_the_sparkles(sandscape):
     # raw / ours / Cycles' on 5.2: 0.426 / 0.422 / 0.422 since the sparkles were jittered in cells
     # 1.2x wider (fewer, brighter points); 0.406 / 0.393 / 0.393 before, when this asked 0.99 x raw.
     assert ours[1] <= raw[1] and ours[1] <= 1.25 * cycles[1]
-    # The sparkles: as bright as in the reference (5.2: raw 1.029, ours 1.022, Cycles' 1.012).
+    # The sparkles: as bright as in the reference (5.2: raw 1.013, ours 1.007, Cycles' 1.005).
     assert abs(ours[0] - 1.0) <= 0.05 and abs(on_cycles[0] - 1.0) <= 0.05
     assert abs(cycles[0] - 1.0) <= 0.05
     assert on_cycles[1] <= 1.05 * cycles[1]
