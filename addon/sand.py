@@ -29,7 +29,10 @@ from . import ownership as own
 
 SAND_COLOR = core_sand.SAND_COLOR
 LOOKS = {"PHYSICAL": physical_sand, "JOURNEY": journey_sand}
-GLINT_INPUTS = ("Threshold", "Glint Size", "Facing Power", "Color", "Strength", "Roughness", "Seed")
+GLINT_INPUTS = ("Threshold", "Glint Size", "Facing Power", "Color", "Strength", "Roughness", "Seed", "IOR")
+# The grains' IOR: the sand's Fresnel and its glint facets take one value from the sand operator
+# (the two groups' inputs are each the artist's in the node editor).
+IOR = "IOR"
 RIPPLE_INPUTS = ("Wavelength", "Amplitude", "Steep Fraction", "Lee Fraction", "Meander", "Meander Scale",
                  "Variation", "Defects")
 # The sand operator's ripple settings and the Ripples inputs they set.
@@ -119,6 +122,9 @@ def read_settings(material):
             settings[name.lower().replace(" ", "_")] = tuple(value) if hasattr(value, "__len__") else value
     if "seed" in settings:
         settings["seed"] = int(round(settings["seed"]))
+    surface = look_node(material)
+    if surface is not None and IOR in surface.inputs and not surface.inputs[IOR].is_linked:
+        settings["ior"] = surface.inputs[IOR].default_value  # the sand's, which Update gives the facets
     wave = ripple_node(material)
     if wave is not None:
         for setting, name in RIPPLE_SETTINGS.items():
@@ -195,6 +201,9 @@ def update_material(material, values, image=None, look="PHYSICAL", glint_mode="L
     for name in GLINT_INPUTS:
         if name in node.inputs and name in values and not node.inputs[name].is_linked:
             node.inputs[name].default_value = values[name]
+    surface = look_node(material)
+    if IOR in values and IOR in surface.inputs and not surface.inputs[IOR].is_linked:
+        surface.inputs[IOR].default_value = values[IOR]
     if ripple_values is not None:
         wave = ripple_node(material)
         for name in ("Wind", *RIPPLE_INPUTS):

@@ -37,7 +37,7 @@ class SANDSCAPE_OT_add_sand_material(SandscapeOperator, bpy.types.Operator):
               "image_resolution": (1, 16384), "ripple_wavelength": (1e-4, 1e3),
               "ripple_amplitude": (0.0, 10.0), "ripple_meander": (0.0, 4.0),
               "ripple_meander_scale": (1e-4, 1e4), "ripple_variation": (0.0, 1.0),
-              "ripple_defects": (0.0, 1.0)}
+              "ripple_defects": (0.0, 1.0), "ior": (1.0, 3.0)}
 
     look: EnumProperty(
         name="Look", default="PHYSICAL", options=SKIP,
@@ -63,6 +63,9 @@ class SANDSCAPE_OT_add_sand_material(SandscapeOperator, bpy.types.Operator):
     color: FloatVectorProperty(**MIRROR["Color"], size=4, subtype="COLOR", soft_min=0.0, soft_max=1.0)
     strength: FloatProperty(**MIRROR["Strength"], soft_min=0.0, soft_max=1000.0)
     roughness: FloatProperty(**MIRROR["Roughness"], soft_min=0.0, soft_max=1.0, subtype="FACTOR")
+    ior: FloatProperty(name="IOR", default=MIRROR["IOR"]["default"], soft_min=1.0, soft_max=3.0, options=SKIP,
+                       description="Index of refraction of the grains, for the sand's Fresnel and its glint "
+                       "facets alike (quartz 1.54)")
     seed: IntProperty(name="Seed", description="Another seed, another set of glinting grains",
                       default=0, min=0, max=2 ** 24, options=SKIP)
     image: StringProperty(
@@ -139,7 +142,7 @@ class SANDSCAPE_OT_add_sand_material(SandscapeOperator, bpy.types.Operator):
                      else glint_noise.ensure_noise_image(self.image_resolution, self.seed))
         values = {"Threshold": self.threshold, "Glint Size": self.glint_size,
                   "Facing Power": self.facing_power, "Color": self.color, "Strength": self.strength,
-                  "Roughness": self.roughness, "Seed": float(self.seed)}
+                  "Roughness": self.roughness, "Seed": float(self.seed), "IOR": self.ior}
         waves = None
         if self.ripples:
             waves = {"Wind": tuple(context.scene.sandscape_atmosphere.wind),

@@ -41,6 +41,25 @@ def test_rerun_updates_instead_of_duplicating(sandscape):
     assert not plane.active_material.cycles.use_bump_map_correction  # the contrast's slopes stay lit
 
 
+def test_one_ior_reaches_the_sand_and_its_facets(sandscape):
+    """The sand's Fresnel and its glint facets are the same grains: the operator's IOR sets both,
+    and the sidebar's Update (invoke) gives the facets the IOR an artist typed on the sand."""
+    plane = readback.uv_plane()
+    sand = sandscape.addon.sand
+    bpy.ops.sandscape.add_sand_material()
+    material = plane.active_material
+    surface, facets = sand.look_node(material).inputs["IOR"], sand.glint_node(material).inputs["IOR"]
+    quartz = sandscape.core.sand.QUARTZ_IOR
+    assert surface.default_value == pytest.approx(quartz) and facets.default_value == pytest.approx(quartz)
+    bpy.ops.sandscape.add_sand_material(ior=1.6)
+    assert surface.default_value == pytest.approx(1.6) and facets.default_value == pytest.approx(1.6)
+    surface.default_value = 1.45  # typed on Physical Sand in the node editor
+    # What Update starts from (invoke; background mode has no window to invoke in).
+    assert sand.read_settings(material)["ior"] == pytest.approx(1.45)
+    bpy.ops.sandscape.add_sand_material(ior=sand.read_settings(material)["ior"])
+    assert facets.default_value == pytest.approx(1.45) and surface.default_value == pytest.approx(1.45)
+
+
 def test_users_look_alike_data_is_never_touched(sandscape):
     plane = readback.uv_plane()
     theirs = bpy.data.materials.new("Sandscape Sand")
@@ -123,6 +142,9 @@ BAD_INPUT = [
     ("plane", {"ripple_meander": 5.0}, "Ripple Meander"),
     ("plane", {"ripple_meander_scale": 0.0}, "Meander Scale"),
     ("plane", {"ripple_variation": 1.5}, "Ripple Variation"),
+    ("plane", {"ior": math.nan}, "IOR"),
+    ("plane", {"ior": 0.5}, "IOR"),
+    ("plane", {"ior": math.inf}, "IOR"),
     ("plane", {"source": "IMAGE", "image": "no such image"}, "No image named"),
     ("no uv map", {"source": "IMAGE"}, "no UV map"),
     ("no faces", {}, "has no faces"),
