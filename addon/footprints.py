@@ -212,7 +212,10 @@ def _walker_steps(scene, settings, walker, chosen, frames, progress=None, stride
         steps = paths.plan_steps(positions, frames, settings.stride * stride_scale,
                                  settings.stance * stride_scale, toe_out=paths.TOE_OUT)
     except paths.PathError as error:
-        raise FootprintError(f"'{walker.name}': {error} ({start}..{end})") from error
+        # Blender does not evaluate a walker hidden in the viewport: its motion is not played.
+        hidden = walker.hide_viewport or not walker.visible_get(view_layer=evaluation.scene_view_layer(scene))
+        why = "; it is hidden in the viewport, where Blender does not move it: unhide it" if hidden else ""
+        raise FootprintError(f"'{walker.name}': {error} ({start}..{end}){why}") from error
     steps["birth"] = steps["landing"]  # a print appears as its foot lands, as a rig's does
     steps["depth"], steps["stretch"] = np.ones(len(steps["birth"])), np.ones(len(steps["birth"]))
     steps["toe"] = np.zeros(len(steps["birth"]))

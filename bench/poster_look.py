@@ -7,7 +7,8 @@ the README's two rims), read as display luminance (PIL's "L", 0-255).
 - Shade glitter: in the shaded slopes' box, over the pixels whose 9x9 median is under 118 (the
   shade, not its sunlit edges), the share standing more than 5 and more than 10 levels over it.
 - Crest sparkles: in the lit crest's box, the specks (pixels the brightest of their 3x3 and more
-  than 30 levels over their 9x9 median), their count and the brightest four.
+  than 30 levels over their 9x9 median), their count, the brightest four, and their arms (the
+  four pixels beside each over the median, against its own: the pixel filter's plus).
 - The nearest print's lit wall: its box's 99.5th percentile, in each half of print_rim.png.
 
 Run: .venv/bin/python bench/poster_look.py [--before COMMIT] [--no-append]
@@ -88,8 +89,12 @@ def crest_specks(image):
         for dx in (-1, 0, 1):
             if dy or dx:
                 peak &= over >= padded[1 + dy:1 + dy + h, 1 + dx:1 + dx + w]
-    specks = np.sort(lum[peak & (over > SPECK_LEVELS)])[::-1]
-    return len(specks), [int(v) for v in specks[:4]]
+    found = peak & (over > SPECK_LEVELS)
+    found[0, :] = found[-1, :] = found[:, 0] = found[:, -1] = False
+    y, x = np.nonzero(found)
+    arms = (over[y - 1, x] + over[y + 1, x] + over[y, x - 1] + over[y, x + 1]) / 4 / over[y, x]
+    specks = np.sort(lum[found])[::-1]
+    return len(specks), [int(v) for v in specks[:4]], float(np.median(arms)) if len(arms) else float("nan")
 
 
 def lit_walls(image):
@@ -115,10 +120,10 @@ def main(argv=None):
         data = picture_bytes(POSTER, commit)
         poster = luminance(data)
         pixels, glitter = shade_glitter(poster)
-        count, brightest = crest_specks(poster)
+        count, brightest, arms = crest_specks(poster)
         mean = rgb_mean(data)
         rows.append(f"| {name} | {pixels} | {glitter[0]:.2f} % / {glitter[1]:.2f} % | {count} "
-                    f"({', '.join(map(str, brightest))}) | {mean:.1f} |")
+                    f"({', '.join(map(str, brightest))}) | {arms:.2f} | {mean:.1f} |")
     x0, y0, x1, y1 = SHADE_BOX
     cx0, cy0, cx1, cy1 = CREST_BOX
     walls = lit_walls(picture(PRINT_RIM))
@@ -128,9 +133,12 @@ def main(argv=None):
         f"display luminance, nothing rendered. Shade: x {x0}-{x1}, y {y0}-{y1}, the pixels whose 9x9 median "
         f"is under {SHADE_MEDIAN}; glitter: their share more than {GLITTER_LEVELS[0]} / {GLITTER_LEVELS[1]} "
         f"levels over that median. Crest: x {cx0}-{cx1}, y {cy0}-{cy1}; specks: 3x3 peaks more than "
-        f"{SPECK_LEVELS} levels over their 9x9 median (the brightest four's levels).", "",
-        "| poster | shaded pixels | glitter > 5 / > 10 | crest specks (brightest) | frame's RGB mean |",
-        "|---|---|---|---|---|", *rows, "",
+        f"{SPECK_LEVELS} levels over their 9x9 median (the brightest four's levels); their arms: the four "
+        f"pixels beside each, over that median, against the speck's own (the median over the specks: "
+        f"the pixel filter's plus).", "",
+        "| poster | shaded pixels | glitter > 5 / > 10 | crest specks (brightest) | their arms "
+        "| frame's RGB mean |",
+        "|---|---|---|---|---|---|", *rows, "",
         f"{PRINT_RIM}: the nearest print's {LIT_WALL_PERCENTILE}th percentile (x {NEAREST_PRINT_BOX[0]}-"
         f"{NEAREST_PRINT_BOX[2]}, y {NEAREST_PRINT_BOX[1]}-{NEAREST_PRINT_BOX[3]} of each crop): "
         f"{walls[0]:.0f} with the 4 cm rim (above), {walls[1]:.0f} with the 8 cm rim (below).",

@@ -158,6 +158,8 @@ def bad_scene(case, settings):
         settings["terrain"] = curve  # a script can bypass the panel's mesh filter
     elif case == "no terrain":
         settings.terrain = None
+    elif case == "hidden":  # disabled in viewports: Blender does not play its motion
+        settings.walker.hide_viewport = True
     elif case == "off the terrain":
         settings.walker = scenes.keyframed_walker(lambda f: (50.0 + f, 0.0, 0.0), range(1, 32), "Away")
 
@@ -172,6 +174,7 @@ NOT_RUNNABLE = [
 BAD_INPUT = [
     ("not animated", {}, "not animated"),
     ("stands still", {}, "does not move"),
+    ("hidden", {}, "hidden in the viewport"),
     ("off the terrain", {}, "No print lands"),
     ("ok", {"stride": 0.0}, "Stride"),
     ("ok", {"stride": -1.0}, "Stride"),
