@@ -63,7 +63,16 @@ def _gathered(tree, layers, image, glint, glint_level, ground):
     # The glint light over the floor, in colour: the glint light × its share over the floor.
     own_level = h.math(tree, "MAXIMUM", glint_level, 1e-9, label="Glint > 0")
     share = h.math(tree, "DIVIDE", over.outputs[0], own_level.outputs[0], label="Share Over the Floor")
-    taken_share = h.math(tree, "MULTIPLY", share.outputs[0], spread.outputs[0], label="Share Taken")
+    wanted = h.math(tree, "MULTIPLY", share.outputs[0], spread.outputs[0], label="Share to Take")
+    # Never more than the pixel stands over the ground: the denoiser may have taken part of the
+    # spread already (at Draft's 16 samples the arms came out as dark specks beside a sparkle).
+    room = h.math(tree, "SUBTRACT", _luminance(tree, image), ground, label="Over the Ground")
+    wanted_level = h.math(tree, "MULTIPLY", wanted.outputs[0], glint_level, label="Light to Take")
+    safe_level = h.math(tree, "MAXIMUM", wanted_level.outputs[0], 1e-9, label="Light to Take > 0")
+    fits = h.math(tree, "DIVIDE", room.outputs[0], safe_level.outputs[0], label="Room for It")
+    capped = h.math(tree, "MINIMUM", fits.outputs[0], 1.0, label="At Most All of It")
+    allowed = h.math(tree, "MAXIMUM", capped.outputs[0], 0.0, label="At Least None")
+    taken_share = h.math(tree, "MULTIPLY", wanted.outputs[0], allowed.outputs[0], label="Share Taken")
     spilled = h.vector_math(tree, "SCALE", glint, label="Glint Light Spread")
     h.link(tree, taken_share.outputs[0], h.socket(spilled.inputs, "Scale"))
     # Shared among the sparkles beside it (their weights over their sum): one beside two is not

@@ -201,8 +201,8 @@ def update_material(material, values, image=None, look="PHYSICAL", glint_mode="L
     for name in GLINT_INPUTS:
         if name in node.inputs and name in values and not node.inputs[name].is_linked:
             node.inputs[name].default_value = values[name]
-    surface = look_node(material)
-    if IOR in values and IOR in surface.inputs and not surface.inputs[IOR].is_linked:
+    surface = look_node(material)  # None while an older file's look group stands (it is kept)
+    if surface is not None and IOR in values and IOR in surface.inputs and not surface.inputs[IOR].is_linked:
         surface.inputs[IOR].default_value = values[IOR]
     if ripple_values is not None:
         wave = ripple_node(material)
