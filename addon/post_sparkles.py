@@ -19,6 +19,9 @@ GATHER_BAR = (1.0, 2.0)
 # The pixel filter hands a one-pixel sparkle's pixels beside it 0.16 of its light each (Blender's
 # 1.5 px Blackman-Harris; diagonals 0.02), and two pixels one sparkle straddles are near alike.
 OWN_PIXEL_BAR = (0.3, 0.5)
+# Its glint light to the mean of its eight neighbours': 11x for a one-pixel sparkle at 1.5 px; a
+# silhouette's edge pixel reached 3-5x where its stair-steps stand out.
+ALONE_BAR = (5.0, 8.0)
 
 
 def keep_sparkles(tree, layers, image, clean):
@@ -55,7 +58,16 @@ def _gathered(tree, layers, image, glint, glint_level, ground):
     over = h.math(tree, "MAXIMUM", excess.outputs[0], 0.0, label="Over the Floor ≥ 0")
     stands = _ramp(tree, over.outputs[0], ground, GATHER_BAR, "Stands Out")
     sparkle = h.math(tree, "MULTIPLY", grains.outputs[0], stands, label="Sparkle")
-    core = h.math(tree, "MULTIPLY", sparkle.outputs[0], own_pixel, label="A Sparkle's Own Pixel")
+    # Alone in its 3x3: a one-pixel sparkle's eight neighbours hold 0.09 of its glint light on
+    # average; a silhouette's edge, where the sand's own sheen meets the sky, has neighbours like
+    # itself, and taken for sparkles its pixels left notches along the crest (the fifteenth review).
+    around = h.math(tree, "MULTIPLY", _box_mean(tree, glint_level), 9.0, label="3x3 Glint Sum")
+    others = h.math(tree, "SUBTRACT", around.outputs[0], glint_level, label="Its Eight Neighbours")
+    their_mean = h.math(tree, "DIVIDE", others.outputs[0], 8.0, label="Their Mean")
+    safe_mean = h.math(tree, "MAXIMUM", their_mean.outputs[0], 1e-9, label="Their Mean > 0")
+    alone = _ramp(tree, glint_level, safe_mean.outputs[0], ALONE_BAR, "Alone in Its 3x3")
+    lone = h.math(tree, "MULTIPLY", sparkle.outputs[0], alone, label="A Lone Sparkle")
+    core = h.math(tree, "MULTIPLY", lone.outputs[0], own_pixel, label="A Sparkle's Own Pixel")
     near = h.add_node(tree, "CompositorNodeDilateErode", label="Beside a Sparkle", inputs={"Size": 1})
     h.link(tree, core.outputs[0], near.inputs["Mask"])
     beside = h.math(tree, "SUBTRACT", 1.0, own_pixel, label="Not a Sparkle's Own")

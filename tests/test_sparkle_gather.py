@@ -50,7 +50,7 @@ def test_sparkles_keep_to_their_own_pixel_through_the_compositor(sandscape):
     frame = ours.mean() / raw.mean()
     # The pixels beside a sparkle are not taken below the sand round them: at Draft's 16 samples
     # they came out as dark specks before the take was capped by what each stands over its ground
-    # (here 7 of the 68 under 0.9x the 5x5 median against raw's 1; capped, 2).
+    # (here 7 of the 68 under 0.9x the 5x5 median against raw's 1; capped, none).
     y, x = np.nonzero(cores)
 
     def dark_beside(pixels):
