@@ -19,9 +19,10 @@ GATHER_BAR = (1.0, 2.0)
 # The pixel filter hands a one-pixel sparkle's pixels beside it 0.16 of its light each (Blender's
 # 1.5 px Blackman-Harris; diagonals 0.02), and two pixels one sparkle straddles are near alike.
 OWN_PIXEL_BAR = (0.3, 0.5)
-# Its glint light to the mean of its eight neighbours': 11x for a one-pixel sparkle at 1.5 px; a
-# silhouette's edge pixel reached 3-5x where its stair-steps stand out.
-ALONE_BAR = (5.0, 8.0)
+# Its glint light to the mean of the ring of 16 pixels round its 3x3: a sparkle's ring holds the
+# sheen alone (and a straddling twin's arm, 0.01 of it); a silhouette's edge runs through the
+# ring, 2 of the 16 pixels like itself (8x), 16x for an edge pixel twice as bright as the rest.
+ALONE_BAR = (10.0, 16.0)
 
 
 def keep_sparkles(tree, layers, image, clean):
@@ -58,14 +59,17 @@ def _gathered(tree, layers, image, glint, glint_level, ground):
     over = h.math(tree, "MAXIMUM", excess.outputs[0], 0.0, label="Over the Floor ≥ 0")
     stands = _ramp(tree, over.outputs[0], ground, GATHER_BAR, "Stands Out")
     sparkle = h.math(tree, "MULTIPLY", grains.outputs[0], stands, label="Sparkle")
-    # Alone in its 3x3: a one-pixel sparkle's eight neighbours hold 0.09 of its glint light on
-    # average; a silhouette's edge, where the sand's own sheen meets the sky, has neighbours like
-    # itself, and taken for sparkles its pixels left notches along the crest (the fifteenth review).
-    around = h.math(tree, "MULTIPLY", _box_mean(tree, glint_level), 9.0, label="3x3 Glint Sum")
-    others = h.math(tree, "SUBTRACT", around.outputs[0], glint_level, label="Its Eight Neighbours")
-    their_mean = h.math(tree, "DIVIDE", others.outputs[0], 8.0, label="Their Mean")
-    safe_mean = h.math(tree, "MAXIMUM", their_mean.outputs[0], 1e-9, label="Their Mean > 0")
-    alone = _ramp(tree, glint_level, safe_mean.outputs[0], ALONE_BAR, "Alone in Its 3x3")
+    # Alone: a sparkle's light falls within its 3x3 (the filter's arms, or the twin pixel of a grain
+    # that straddles two), so the ring of 16 pixels round that 3x3 holds only the sand's sheen.
+    # A silhouette's edge, where the sheen meets the sky, runs on through the ring; taken for
+    # sparkles its pixels left notches along the crest (the fifteenth review). Against the eight
+    # neighbours instead, a straddling grain's twin barred it and its arms stayed (the sixteenth).
+    inner = h.math(tree, "MULTIPLY", _box_mean(tree, glint_level), 9.0, label="3x3 Glint Sum")
+    outer = h.math(tree, "MULTIPLY", _box_mean(tree, glint_level, 2), 25.0, label="5x5 Glint Sum")
+    ring = h.math(tree, "SUBTRACT", outer.outputs[0], inner.outputs[0], label="The Ring Round Its 3x3")
+    their_mean = h.math(tree, "DIVIDE", ring.outputs[0], 16.0, label="The Ring's Mean")
+    safe_mean = h.math(tree, "MAXIMUM", their_mean.outputs[0], 1e-9, label="The Ring's Mean > 0")
+    alone = _ramp(tree, glint_level, safe_mean.outputs[0], ALONE_BAR, "Alone in Its 5x5")
     lone = h.math(tree, "MULTIPLY", sparkle.outputs[0], alone, label="A Lone Sparkle")
     core = h.math(tree, "MULTIPLY", lone.outputs[0], own_pixel, label="A Sparkle's Own Pixel")
     near = h.add_node(tree, "CompositorNodeDilateErode", label="Beside a Sparkle", inputs={"Size": 1})
@@ -102,9 +106,12 @@ def _gathered(tree, layers, image, glint, glint_level, ground):
     return h.vector_math(tree, "ADD", floor.outputs[0], back.outputs[0], label="+ Gathered Back").outputs[0]
 
 
-def _box_mean(tree, value):
-    """The 3x3 mean: the Blur node's Flat filter of size 1 (on 5.0 and 5.2)."""
-    mean = h.add_node(tree, "CompositorNodeBlur", label="3x3 Mean", inputs={"Type": "Flat", "Size": (1, 1)})
+def _box_mean(tree, value, reach=1):
+    """The mean over a square of 2 reach + 1 pixels a side: the Blur node's Flat filter of size
+    reach (on 5.0 and 5.2)."""
+    side = 2 * reach + 1
+    mean = h.add_node(tree, "CompositorNodeBlur", label=f"{side}x{side} Mean",
+                      inputs={"Type": "Flat", "Size": (reach, reach)})
     h.link(tree, value, mean.inputs["Image"])
     return mean.outputs["Image"]
 
