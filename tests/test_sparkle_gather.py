@@ -97,7 +97,8 @@ def test_sparkles_keep_to_their_own_pixel_through_the_compositor(sandscape):
     # A grain that straddles two pixels is gathered too: the eight neighbours held its twin, and
     # until the ring round the 3x3 judged a sparkle alone its arms stayed (the sixteenth review).
     pairs, pair_ground = straddling_pairs(raw)
-    pair_before, pair_after = pair_arm_share(raw, pairs, pair_ground), pair_arm_share(ours, pairs, pair_ground)
+    pair_before = pair_arm_share(raw, pairs, pair_ground)
+    pair_after = pair_arm_share(ours, pairs, pair_ground)
     print(f"{len(pairs)} straddling pairs: the six pixels beside each hold {pair_before:.3f} of the "
           f"light round it raw, {pair_after:.3f} composited")
     print(f"{cores.sum()} sparkles: the four pixels beside each hold {before:.3f} of its 3x3's light "
