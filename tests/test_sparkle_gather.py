@@ -24,10 +24,11 @@ def isolated_cores(level, bar=8.0):
     return cores, ground
 
 
-def straddling_pairs(level, bar=8.0):
+def straddling_pairs(level, bar=8.0, twin_share=0.35):
     """Grains that straddle two pixels: the brightest of their 5x5 with a side neighbour at least
-    half as bright, together over `bar` times the 5x5 median, and nothing else of the 5x5 over 0.4
-    of the brighter (not a blob, not an edge). [(y, x, y2, x2)], away from the frame's edge."""
+    `twin_share` as bright (a centred one-pixel sparkle's arm is about 0.27 of it), together over
+    `bar` times the 5x5 median, and nothing else of the 5x5 over 0.4 of the brighter (not a blob,
+    not an edge). [(y, x, y2, x2)], away from the frame's edge."""
     h, w = level.shape
     padded = np.pad(level, 2, mode="edge")
     windows = np.stack([padded[dy:dy + h, dx:dx + w] for dy in range(5) for dx in range(5)])
@@ -40,7 +41,7 @@ def straddling_pairs(level, bar=8.0):
         twin, y2, x2 = max(sides)
         window = level[y - 2:y + 3, x - 2:x + 3].copy()
         window[2, 2] = window[2 + y2 - y, 2 + x2 - x] = 0.0
-        if twin >= 0.5 * level[y, x] and level[y, x] + twin > bar * ground[y, x] \
+        if twin >= twin_share * level[y, x] and level[y, x] + twin > bar * ground[y, x] \
                 and window.max() < 0.4 * level[y, x]:
             pairs.append((y, x, y2, x2))
     return pairs, ground
@@ -96,6 +97,7 @@ def test_sparkles_keep_to_their_own_pixel_through_the_compositor(sandscape):
     dark, raw_dark = dark_beside(ours), dark_beside(raw)
     # A grain that straddles two pixels is gathered too: the eight neighbours held its twin, and
     # until the ring round the 3x3 judged a sparkle alone its arms stayed (the sixteenth review).
+    # At 0.35 (not 0.5) enough pairs for a median on 5.0 too: 15 on 5.2, 6 on 5.0 (2 at 0.5).
     pairs, pair_ground = straddling_pairs(raw)
     pair_before = pair_arm_share(raw, pairs, pair_ground)
     pair_after = pair_arm_share(ours, pairs, pair_ground)
@@ -114,6 +116,8 @@ def test_sparkles_keep_to_their_own_pixel_through_the_compositor(sandscape):
     assert light > 1.2
     assert abs(frame - 1.0) < 0.02
     assert dark <= raw_dark + 2
-    assert len(pairs) >= 3
+    # Measured 0.228 -> 0.058 on 5.2, 0.280 -> 0.047 on 5.0; judged alone against its eight
+    # neighbours, 0.228 -> 0.151 (0.66x).
+    assert len(pairs) >= 4
     assert pair_before > 0.2
-    assert pair_after < 0.6 * pair_before
+    assert pair_after < 0.45 * pair_before
