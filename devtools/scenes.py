@@ -97,9 +97,9 @@ def camera_rays(camera_obj, width, height, columns=None, rows=None):
 
 
 def pixel_hits(scene, camera_obj, width, height, to_sun, offset=0.02,
-               hidden=("dust_volume", "clouds", "cloud_shadows")):
-    """What the ray through each pixel centre hits, volumes' boxes and EEVEE's cloud shadow mesh
-    (our objects of the `hidden` kinds) left out: {"hit", "distance", "normal_z", "object",
+               hidden=("dust_volume", "far_haze", "clouds", "cloud_shadows")):
+    """What the ray through each pixel centre hits, volumes' boxes and shells and EEVEE's cloud
+    shadow mesh (our objects of the `hidden` kinds) left out: {"hit", "distance", "normal_z", "object",
     "sunlit"} arrays (height, width), rows bottom-up; sunlit: a surface facing `to_sun` (a world
     vector towards the sun) with nothing between (a second ray from `offset` off the surface)."""
     boxes = [o for o in scene.objects if o.get("sandscape_object") in hidden]
