@@ -232,3 +232,19 @@ def test_a_cloud_layer_from_before_the_far_haze_gets_none_and_no_traceback(sands
     del layer[sandscape.addon.far_haze.REGION_KEY]
     assert bpy.ops.sandscape.add_atmosphere() == {"FINISHED"}
     assert _ours() == [] and "run Add Clouds again" in sandscape.addon.far_haze.why_not(scene)
+
+
+def test_the_pixel_probe_sees_the_sky_through_the_far_haze(sandscape):
+    """devtools.scenes.pixel_hits leaves the shell out as it does the dust box: with the shell
+    caught, every ray hit it and the EEVEE bench found no sky and all the sand in shade."""
+    scene, camera, _markers = _hazy_scene()
+    assert _shell() is not None
+    hits = scenes.pixel_hits(scene, camera, 48, 18, (0.0, -0.5, 0.866))
+    caught = scenes.pixel_hits(scene, camera, 48, 18, (0.0, -0.5, 0.866),
+                               hidden=("dust_volume", "clouds", "cloud_shadows"))
+    rows_up = slice(10, None)  # rows bottom-up: above the horizon, under the clouds' base
+    shell = _shell()
+    assert (caught["object"][rows_up] == shell).all()  # the probe can fail: the shell takes every ray
+    seen = {o.name for o in hits["object"][rows_up].ravel() if o is not None}
+    assert seen <= {f"Marker {distance:.0f}" for distance in DISTANCES}
+    assert (~hits["hit"][rows_up]).mean() > 0.5  # sky, beside the two far markers
