@@ -8,7 +8,7 @@ side-by-side pictures are written to the output folder (docs/eevee_demo.png with
 EEVEE runs on software OpenGL here: its times are a CPU's, not a GPU's.
 Appends the table to bench/RESULTS.md.
 
-Run: .venv/bin/python bench/eevee_demo.py [--frames 120 200] [--samples 16] [--picture] [--no-append]
+Run: .venv/bin/python bench/eevee_demo.py [--frames 60 200] [--samples 16] [--picture] [--no-append]
 """
 
 import argparse
@@ -26,7 +26,7 @@ sys.path.insert(0, str(REPO))
 from devtools import results, session  # noqa: E402
 
 RESOLUTION = (160, 90)
-FRAMES = (120, 200)  # the poster's and the effects bench's frames: walker, prints, sun, clouds in view
+FRAMES = (60, 200)  # the poster's frame and the effects bench's: walker, prints, sun, clouds in view
 NEAR = 60.0  # metres: sand nearer than this is "near"
 REGIONS = ("sky", "walker", "near sand in sun", "near sand in shade", "far sand in sun", "far sand in shade")
 
