@@ -52,10 +52,15 @@ PRESETS = {"DRAFT": _preset(16, 16), "PREVIEW": _preset(72, 64),
 # lowered its error at every sample count measured, so every preset has them.
 # Clamp Surface Indirect off: at EEVEE's 10 the world's light is scaled down whenever lit sand
 # (our world's light from below, addon/sky_eevee.py) is brighter than that.
-_EEVEE_COMMON = {"volumetric_tile_size": "2", "clamp_surface_indirect": 0.0}
-EEVEE_PRESETS = {"DRAFT": {"taa_render_samples": 16, **_EEVEE_COMMON},
-                 "PREVIEW": {"taa_render_samples": 64, **_EEVEE_COMMON},
-                 "FINAL": {"taa_render_samples": 128, **_EEVEE_COMMON}}
+# The froxels' depth slices fully exponential: EEVEE spreads them over every volume in view, and
+# at Blender's 0.8, near linear, a layer reaching kilometres (clouds, far haze) left the slices by
+# the camera tens of metres deep: dust metres off was smeared through them (the demo's walker
+# veiled grey; tests/test_eevee_froxel_depth.py). Twice the slices where time allows.
+_EEVEE_COMMON = {"volumetric_tile_size": "2", "clamp_surface_indirect": 0.0,
+                 "volumetric_sample_distribution": 1.0}
+EEVEE_PRESETS = {"DRAFT": {"taa_render_samples": 16, "volumetric_samples": 64, **_EEVEE_COMMON},
+                 "PREVIEW": {"taa_render_samples": 64, "volumetric_samples": 128, **_EEVEE_COMMON},
+                 "FINAL": {"taa_render_samples": 128, "volumetric_samples": 128, **_EEVEE_COMMON}}
 
 
 def apply_eevee(scene, settings):
