@@ -18,7 +18,18 @@ from ..core import sun as sky_sun
 from ..core.clouds import layer_region as holding_region
 from ..node_groups import dust_field, dust_volume
 from ..node_groups import helper as h
-from . import drivers, evaluation, sand, sand_eevee, shot, sky_eevee, sky_eevee_haze, units, walker_wind
+from . import (
+    drivers,
+    evaluation,
+    sand,
+    sand_eevee,
+    shot,
+    sky_eevee,
+    sky_eevee_clouds,
+    sky_eevee_haze,
+    units,
+    walker_wind,
+)
 from . import ownership as own
 from .far_haze import HAZE_KEY as FAR_HAZE_KEY
 from .far_haze import box_bounds
@@ -354,6 +365,7 @@ def apply(scene, settings):
     sand_eevee.follow_scene_sun(scene)
     sky_eevee.follow_sun(world, sun)
     sky_eevee.follow_clamp(world, scene)
+    sky_eevee_clouds.follow_scene(scene)
     if sky_eevee.followed_sand(world) is None:  # sand added before the sky: the ground takes its colour
         sky_eevee.follow_sand(world, next(filter(None, map(sand.find_sand_material, scene.objects)), None))
     haze_shell, _ = refresh_far_haze(scene)  # hollowed round the box as it is now

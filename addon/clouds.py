@@ -20,7 +20,7 @@ from ..core import cloud_shadows as shadow_twin
 from ..core import clouds as twin
 from ..node_groups import cloud_density, weather_map
 from ..node_groups import helper as h
-from . import cloud_grid, cloud_shadows, evaluation, far_haze, units
+from . import cloud_grid, cloud_shadows, evaluation, far_haze, sky_eevee_clouds, units
 from . import ownership as own
 from .shot import camera_views, frames_per_second, reach_points
 
@@ -117,6 +117,7 @@ def remove_layer(scene):
         own.remove_with_data(layer)
     cloud_shadows.remove(scene)
     far_haze.remove(scene)
+    sky_eevee_clouds.follow_scene(scene)
 
 
 def ensure_layer(scene):
@@ -356,6 +357,7 @@ def apply(scene, s, image=None, done=None):
     layer[far_haze.BASE_KEY] = float(low)
     haze, no_haze = far_haze.refresh(scene)
     shadows = _apply_shadows(scene, s, image, done)
+    sky_eevee_clouds.follow_scene(scene)  # EEVEE's lighting world takes the layer's light
     warnings = [text for text in (done["warning"], clip_warning(scene, s)) if text]
     return {**done, "layer": layer, "warning": "; ".join(warnings) or None, "changes": changes,
             "eevee_shadows": shadows, "far_haze": haze, "no_far_haze": no_haze}

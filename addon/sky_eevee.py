@@ -8,8 +8,9 @@ at 65504, far past white at any exposure a sunlit frame takes.
 EEVEE lights diffuse surfaces from the world's first two spherical-harmonic bands, derung, and
 clamped by the scene's Clamp Surface Indirect. Its lighting world is therefore two uniform
 hemispheres (core.atmosphere.eevee_world_hemispheres): above, the sky's irradiance on level
-ground, so level sand gets the sky's light as in Cycles, with the lamp's light the dust box's haze
-scatters down added where it comes from (sky_eevee_haze.py); below, the lit sand's, which lights a
+ground, so level sand gets the sky's light as in Cycles, changed by the cloud layer (its
+scattered sunlight in, the sky it hides out: sky_eevee_clouds.py), with the lamp's light the dust
+box's haze scatters down added where it comes from (sky_eevee_haze.py); below, the lit sand's, which lights a
 walker's legs and the undersides of things as the sand's bounce does in Cycles (EEVEE bounces
 none without a baked probe).
 
@@ -26,7 +27,7 @@ from ..core import atmosphere as air
 from ..core import sand as core_sand
 from ..core import sun as sky_sun
 from ..node_groups import helper as h
-from . import compat, drivers, sky_eevee_haze
+from . import compat, drivers, sky_eevee_clouds, sky_eevee_haze
 from . import ownership as own
 from .sun_lamp import SKY_SUN_SIZE
 
@@ -108,13 +109,14 @@ def _level_light(tree):
     direct = h.add_node(tree, "ShaderNodeVectorMath", operation="SCALE", label="Sun on Level Sand")
     h.link(tree, light.outputs[0], direct.inputs[0])
     h.link(tree, height.outputs[0], direct.inputs["Scale"])
-    sky = _sky_irradiance(tree, height.outputs[0])
-    level = h.add_node(tree, "ShaderNodeVectorMath", operation="ADD", label="Light on Level Sand")
-    h.link(tree, direct.outputs[0], level.inputs[0])
-    h.link(tree, sky, level.inputs[1])
     # Combine Color: a driver on each channel's input, as for the sun's light.
     color = h.add_node(tree, "ShaderNodeCombineColor", name=GROUND_COLOR, label="Ground Colour")
     set_ground_colour(color, core_sand.SAND_COLOR)
+    clear = _sky_irradiance(tree, height.outputs[0])
+    sky = sky_eevee_clouds.build(tree, height.outputs[0], light.outputs[0], clear, color.outputs[0])
+    level = h.add_node(tree, "ShaderNodeVectorMath", operation="ADD", label="Light on Level Sand")
+    h.link(tree, direct.outputs[0], level.inputs[0])
+    h.link(tree, sky, level.inputs[1])
     ground = h.add_node(tree, "ShaderNodeVectorMath", operation="MULTIPLY", label="Ground Radiance × π")
     h.link(tree, level.outputs[0], ground.inputs[0])
     h.link(tree, color.outputs[0], ground.inputs[1])
@@ -156,16 +158,7 @@ def _sky_irradiance(tree, height):
     peaks = columns.max(axis=0)
     curves = h.add_node(tree, "ShaderNodeRGBCurve", name=SKY_LIGHT, label="Sky on Level Sand ÷ Its Peak")
     for channel in range(3):
-        curve = curves.mapping.curves[channel]
-        while len(curve.points) > 2:
-            curve.points.remove(curve.points[-1])
-        values = columns[:, channel] / peaks[channel]
-        curve.points[0].location = (float(sines[0]), float(values[0]))
-        curve.points[1].location = (float(sines[-1]), float(values[-1]))
-        for sine, value in zip(sines[1:-1], values[1:-1], strict=True):
-            curve.points.new(float(sine), float(value))
-        for point in curve.points:
-            point.handle_type = "VECTOR"
+        h.polyline_curve(curves.mapping.curves[channel], sines, columns[:, channel] / peaks[channel])
     curves.mapping.update()
     grey = h.add_node(tree, "ShaderNodeCombineColor")
     for index in range(3):

@@ -278,3 +278,15 @@ def arrange(tree, set_widths=True):
             deepest = max(deepest, top - y)
         top -= deepest + BAND_GAP
     return placed
+
+
+def polyline_curve(curve, xs, ys):
+    """A curve mapping's curve through these points, straight between them (vector handles)."""
+    while len(curve.points) > 2:
+        curve.points.remove(curve.points[-1])
+    curve.points[0].location = (float(xs[0]), float(ys[0]))
+    curve.points[1].location = (float(xs[-1]), float(ys[-1]))
+    for x, y in zip(xs[1:-1], ys[1:-1], strict=True):
+        curve.points.new(float(x), float(y))
+    for point in curve.points:
+        point.handle_type = "VECTOR"
