@@ -9,10 +9,10 @@ EEVEE lights diffuse surfaces from the world's first two spherical-harmonic band
 clamped by the scene's Clamp Surface Indirect. Its lighting world is therefore two uniform
 hemispheres (core.atmosphere.eevee_world_hemispheres): above, the sky's irradiance on level
 ground, so level sand gets the sky's light as in Cycles, changed by the cloud layer (its
-scattered sunlight in, the sky it hides out: sky_eevee_clouds.py), with the lamp's light the dust
-box's haze scatters down added where it comes from (sky_eevee_haze.py); below, the lit sand's, which lights a
-walker's legs and the undersides of things as the sand's bounce does in Cycles (EEVEE bounces
-none without a baked probe).
+scattered sunlight in, the sky it hides out: sky_eevee_clouds.py), with the lamp's light the
+dust box's haze scatters down added where it comes from (sky_eevee_haze.py); below, the lit
+sand's, which lights a walker's legs and the undersides of things as the sand's bounce does in
+Cycles (EEVEE bounces none without a baked probe).
 
 Both follow the scene's sun lamp through simple-expression drivers (its axis, strength and
 colour), with the sky's irradiance at that elevation from core/sun_table.py in an RGB Curves

@@ -4,11 +4,11 @@ above on level sand (core.cloud_light, in nodes), added to the clear sky's.
 Cycles lights the sand with the clouds' scattered sunlight, which EEVEE's volumes give no surface:
 without it EEVEE's shade under the demo's 6° sun was the clear sky's grey-blue where Cycles' is
 gold. The shares D (of the lamp's light), G (of the lamp's light tinted by the sand: the sunlit
-sand's light the clouds' bases send back) and B (of the sky's) by the sine of the sun's elevation
-sit in an RGB Curves node (red D, blue G, green B, each over its peak), set by Add Clouds for the layer's
-coverage and optical depth and cleared when the layer goes; the lamp's light and axis are the
-world's driven sockets, and a driver on the layer's Disable in Renders takes the change away when
-the layer is hidden: no Python on a farm.
+sand's light the clouds' bases send back) and B (of the sky's) by the sine of the sun's
+elevation sit in an RGB Curves node (its red, green and blue curves, each over its peak), set by
+Add Clouds for the layer's coverage and optical depth and cleared when the layer goes; the lamp's
+light and axis are the world's driven sockets, and a driver on the layer's Disable in Renders
+takes the change away when the layer is hidden: no Python on a farm.
 """
 
 import numpy as np
@@ -31,7 +31,7 @@ def build(tree, sine, sun_light, sky, ground):
     for index in range(3):
         h.link(tree, sine, grey.inputs[index])
     curves = h.add_node(tree, "ShaderNodeRGBCurve", name=CURVES,
-                        label="Clouds: Sun's Share (R), Sky's (G), Sand's (B) ÷ Peaks")
+                        label="Clouds: Sun's (R), Sand's (G), Sky's (B) Shares ÷ Peaks")
     h.link(tree, grey.outputs[0], curves.inputs["Color"])
     _set_curves(curves, np.array([0.0, 1.0]), np.zeros((3, 2)))
     peaks = h.add_node(tree, "ShaderNodeVectorMath", operation="MULTIPLY", name=PEAKS, label="× Peaks")
@@ -47,13 +47,13 @@ def build(tree, sine, sun_light, sky, ground):
     # The sun's share comes down in the lamp's colour, the sand's in the lamp's times the sand's.
     tint = h.add_node(tree, "ShaderNodeVectorMath", operation="MULTIPLY_ADD", label="D + G × Sand")
     h.link(tree, ground, tint.inputs[0])
-    h.link(tree, axes.outputs["Z"], tint.inputs[1])
+    h.link(tree, axes.outputs["Y"], tint.inputs[1])
     h.link(tree, axes.outputs["X"], tint.inputs[2])
     sun_part = h.add_node(tree, "ShaderNodeVectorMath", operation="MULTIPLY",
                           label="Sun's Light the Clouds Send Down")
     h.link(tree, sun_light, sun_part.inputs[0])
     h.link(tree, tint.outputs[0], sun_part.inputs[1])
-    sky_kept = h.math(tree, "SUBTRACT", 1.0, axes.outputs["Y"], label="Sky's Light Left")
+    sky_kept = h.math(tree, "SUBTRACT", 1.0, axes.outputs["Z"], label="Sky's Light Left")
     sky_part = h.add_node(tree, "ShaderNodeVectorMath", operation="SCALE")
     h.link(tree, sky, sky_part.inputs[0])
     h.link(tree, sky_kept.outputs[0], sky_part.inputs["Scale"])
@@ -63,14 +63,11 @@ def build(tree, sine, sun_light, sky, ground):
     return total.outputs[0]
 
 
-CHANNELS = (0, 2, 1)  # the curve channel of D, G and B: red the sun's, blue the sand's, green the sky's
-
-
 def _set_curves(node, sines, values):
-    """Each of D, G, B (rows of values) over its peak on its channel's curve at these sines; the
-    combined curve straight. Returns the peaks (D, G, B)."""
+    """D, G, B (rows of values) each over its peak on the red, green and blue curves at these
+    sines; the combined curve straight. Returns the peaks."""
     peaks = [max(float(v.max()), 1e-12) for v in values]
-    for channel, row, peak in zip(CHANNELS, values, peaks, strict=True):
+    for channel, (row, peak) in enumerate(zip(values, peaks, strict=True)):
         h.polyline_curve(node.mapping.curves[channel], sines, row / peak)
     node.mapping.use_clip = False
     node.mapping.update()
@@ -89,8 +86,7 @@ def follow(world, layer=None, coverage=0.0, optical_depth=0.0):
     degrees, *values = cloud_light.curves(coverage, optical_depth)
     sines = np.append(np.sin(np.radians(degrees)), 1.0)
     values = np.array([np.append(v, v[-1]) for v in values])
-    peak_d, peak_g, peak_b = _set_curves(curves, sines, values)
-    peaks.inputs[1].default_value = (peak_d, peak_b, peak_g)  # the curve's channels: D, B, G
+    peaks.inputs[1].default_value = _set_curves(curves, sines, values)
     if layer is None:
         shown.inputs[0].driver_remove("default_value")
         shown.inputs[0].default_value = 0.0
@@ -106,8 +102,8 @@ def held(world):
     if curves is None or peaks is None:
         return None
     scale = peaks.inputs[1].default_value
-    points = [curves.mapping.curves[channel].points for channel in CHANNELS]
-    return [(d.location[0], d.location[1] * scale[0], g.location[1] * scale[2], b.location[1] * scale[1])
+    points = [curves.mapping.curves[channel].points for channel in range(3)]
+    return [(d.location[0], *(p.location[1] * k for p, k in zip((d, g, b), scale, strict=True)))
             for d, g, b in zip(*points, strict=True)]
 
 
