@@ -32,6 +32,13 @@ def wanted(scene):
     return scene.render.engine == "BLENDER_EEVEE"
 
 
+def unshaded(scene):
+    """The scene has a cloud layer and renders with EEVEE's Volume Shadows off: a cloud's underside
+    gets the whole sun (the EEVEE presets turn them on; they are the artist's otherwise)."""
+    return (wanted(scene) and not scene.eevee.use_volumetric_shadows
+            and own.scene_object(scene, own.CLOUDS) is not None)
+
+
 def caster(scene):
     return own.scene_object(scene, own.CLOUD_SHADOWS)
 

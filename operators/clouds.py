@@ -2,7 +2,7 @@
 
 import bpy
 
-from ..addon import clouds, far_haze, ownership, units
+from ..addon import cloud_shadows, clouds, far_haze, ownership, units
 from ..addon.settings import CLOUD_LIMITS, cloud_fields
 from .base import SandscapeOperator, SceneSettings, editable_problem, has_camera, value_problem
 
@@ -77,6 +77,8 @@ class SANDSCAPE_OT_add_clouds(SceneSettings, SandscapeOperator, bpy.types.Operat
                     + (f"; EEVEE's shadow of it: a {shadows['texels'][1]} × {shadows['texels'][0]} map"
                        if (shadows := done.get("eevee_shadows")) else "")
                     + hazed
+                    + ("; EEVEE's Volume Shadows kept off (the clouds' undersides get the whole sun: "
+                       "an EEVEE quality preset turns them on)" if cloud_shadows.unshaded(scene) else "")
                     + ("; changed: " + "; ".join(done["changes"]) if done["changes"] else ""))
         if done["warning"]:
             self.report({"WARNING"}, done["warning"])

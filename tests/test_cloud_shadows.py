@@ -140,6 +140,35 @@ def test_the_shadow_layer_is_made_for_eevee_once_and_goes_with_it():
     assert _shadow_things() == (0, 0, 0)
 
 
+def test_add_clouds_says_when_eevee_would_render_them_unshaded(sandscape):
+    """EEVEE's Volume Shadows are the artist's: Add Clouds keeps them off and says so, the Clouds
+    section too, until an EEVEE preset turns them on (in Cycles nothing is said)."""
+    from test_ui import RecordingLayout
+
+    def labels():
+        layout = RecordingLayout()
+        bpy.types.SANDSCAPE_PT_clouds.draw(types.SimpleNamespace(layout=layout), bpy.context)
+        return [c[1] for c in layout.calls if c[0] == "label"]
+
+    scene = bpy.context.scene
+    _sun_scene(scene, 40.0)
+    values = {"coverage": 0.5, "seed": 5, "map_scale": 2000.0, "reach": 1.0, "voxel": 400.0}
+    scene.render.engine = "BLENDER_EEVEE"
+    scene.eevee.use_volumetric_shadows = False
+    assert sandscape.ui.panels.CLOUDS_UNSHADED_IN_EEVEE not in labels()  # no clouds yet
+    result, reports = operators.run_execute("sandscape.add_clouds", **values)
+    assert result == {"FINISHED"} and not scene.eevee.use_volumetric_shadows
+    assert any("Volume Shadows kept off" in text for _, text in reports)
+    assert sandscape.ui.panels.CLOUDS_UNSHADED_IN_EEVEE in labels()
+    assert operators.run_execute("sandscape.apply_quality_preset", preset="DRAFT")[0] == {"FINISHED"}
+    assert scene.eevee.use_volumetric_shadows
+    assert sandscape.ui.panels.CLOUDS_UNSHADED_IN_EEVEE not in labels()
+    result, reports = operators.run_execute("sandscape.add_clouds", **values)
+    assert not any("Volume Shadows" in text for _, text in reports)
+    scene.render.engine, scene.eevee.use_volumetric_shadows = "CYCLES", False
+    assert sandscape.ui.panels.CLOUDS_UNSHADED_IN_EEVEE not in labels()
+
+
 def test_the_shadow_layer_drifts_with_the_clouds_in_plain_blender(tmp_path):
     """Saved and opened with Sandscape off and Python auto-run off, as on a farm: the mesh moves
     with the clouds' grid at a later frame, and its outline is in the file."""

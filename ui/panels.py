@@ -211,6 +211,8 @@ class SANDSCAPE_PT_clouds(SandscapeSubPanel, bpy.types.Panel):
             layout.label(text=CLOUD_SHADOWS_STALE, icon="ERROR")
         elif context.scene.render.engine == "BLENDER_EEVEE":
             layout.label(text=CLOUD_SHADOWS_IN_EEVEE, icon="INFO")
+        if cloud_shadows.unshaded(context.scene):
+            layout.label(text=CLOUDS_UNSHADED_IN_EEVEE, icon="ERROR")
         layout.operator("sandscape.add_clouds", icon="OUTLINER_DATA_VOLUME")
 
 
@@ -232,6 +234,7 @@ class SANDSCAPE_PT_render(SandscapeSubPanel, bpy.types.Panel):
 
 
 CLOUD_SHADOWS_IN_EEVEE = "EEVEE: the clouds' ground shadows from Add Clouds"
+CLOUDS_UNSHADED_IN_EEVEE = "EEVEE's Volume Shadows are off: the clouds render unshaded (an EEVEE preset)"
 CLOUD_SHADOWS_STALE = "EEVEE's cloud shadows are out of date (the sun moved): Add Clouds again"
 
 
