@@ -7,6 +7,8 @@ from ..addon.settings import CLOUD_LIMITS, cloud_fields
 from .base import SandscapeOperator, SceneSettings, editable_problem, has_camera, value_problem
 
 FIELDS = cloud_fields(True)
+UNSHADED = ("; EEVEE's Volume Shadows kept off (Render ▸ Shadows: the clouds' undersides get the whole sun; "
+            "an EEVEE quality preset turns them on)")
 
 
 class SANDSCAPE_OT_add_clouds(SceneSettings, SandscapeOperator, bpy.types.Operator):
@@ -77,8 +79,7 @@ class SANDSCAPE_OT_add_clouds(SceneSettings, SandscapeOperator, bpy.types.Operat
                     + (f"; EEVEE's shadow of it: a {shadows['texels'][1]} × {shadows['texels'][0]} map"
                        if (shadows := done.get("eevee_shadows")) else "")
                     + hazed
-                    + ("; EEVEE's Volume Shadows kept off (the clouds' undersides get the whole sun: "
-                       "an EEVEE quality preset turns them on)" if cloud_shadows.unshaded(scene) else "")
+                    + (UNSHADED if cloud_shadows.unshaded(scene) else "")
                     + ("; changed: " + "; ".join(done["changes"]) if done["changes"] else ""))
         if done["warning"]:
             self.report({"WARNING"}, done["warning"])

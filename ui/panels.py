@@ -234,7 +234,7 @@ class SANDSCAPE_PT_render(SandscapeSubPanel, bpy.types.Panel):
 
 
 CLOUD_SHADOWS_IN_EEVEE = "EEVEE: the clouds' ground shadows from Add Clouds"
-CLOUDS_UNSHADED_IN_EEVEE = "EEVEE's Volume Shadows are off: the clouds render unshaded (an EEVEE preset)"
+CLOUDS_UNSHADED_IN_EEVEE = "EEVEE's Volume Shadows are off (Render ▸ Shadows): the clouds render unshaded"
 CLOUD_SHADOWS_STALE = "EEVEE's cloud shadows are out of date (the sun moved): Add Clouds again"
 
 
