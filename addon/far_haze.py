@@ -27,8 +27,10 @@ SEEN_NODE = "Sandscape Sky Seen"  # its Background, whose strength the camera se
 REGION_KEY = "sandscape_region"  # on the cloud layer: (xmin, ymin, xmax, ymax) of its sky
 BASE_KEY = "sandscape_base"  # on the cloud layer: the clouds' base
 FOLLOWED = ("sun_elevation", "sun_rotation")  # the world's sky follows the lamp: the haze follows it
-# The hollow is this share of the box's size wider than the box: faces of two volumes in one place
-# let a ray miss the second (it never entered the haze, and the haze changed nothing).
+# The hollow is this share of the box's size wider than the box, and the haze stops this share of
+# its height under the clouds' base: faces of two volumes in one place let a ray miss the second
+# (it never entered the haze, and the haze changed nothing; at unit scale 0.01 Cycles drew the
+# clouds overhead only in a wedge of the sky).
 CAVITY_GAP = 1e-3
 STEP_SHARE = 10.0  # the shell's step rate: its haze is even along a ray, a few steps integrate it
 # On the dust box: the haze's extinction (per scene unit) Add Atmosphere gave it. The far haze takes
@@ -99,8 +101,9 @@ def refresh(scene):
         low, high = box_bounds(box)
         gap = CAVITY_GAP * float(np.max(high - low))
         hollow = (*(low[:2] - gap), *(high[:2] + gap), high[2] + gap)
-        mesh = twin.shell_mesh(tuple(layer[REGION_KEY]), float(low[2]), float(layer[BASE_KEY]),
-                               tuple(map(float, hollow)))
+        base = float(layer[BASE_KEY])
+        top = base - CAVITY_GAP * (base - float(low[2]))
+        mesh = twin.shell_mesh(tuple(layer[REGION_KEY]), float(low[2]), top, tuple(map(float, hollow)))
         if mesh is None:
             reason = "the dust box holds all of the clouds' sky"
     if reason is not None:
