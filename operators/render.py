@@ -7,6 +7,9 @@ from bpy.props import BoolProperty, EnumProperty
 from ..addon import optimize, presets
 from .base import SandscapeOperator
 
+# As Blender's interface spells them ("Eevee" from the identifier was not)
+ENGINE_NAMES = {"BLENDER_EEVEE": "EEVEE", "CYCLES": "Cycles", "BLENDER_WORKBENCH": "Workbench"}
+
 
 class SANDSCAPE_OT_optimize_scene(SandscapeOperator, bpy.types.Operator):
     """Switch off what does not reach the image in the scene's engine: empty volumes, idle adaptive
@@ -78,8 +81,8 @@ class SANDSCAPE_OT_apply_quality_preset(SandscapeOperator, bpy.types.Operator):
         scene.render.engine = "BLENDER_EEVEE" if wanted == "EEVEE" else "CYCLES"
         switched = ""
         if scene.render.engine != before:
-            switched = (f"; render engine {before.replace('BLENDER_', '').title()} → "
-                        f"{'EEVEE' if wanted == 'EEVEE' else 'Cycles'}")
+            was = ENGINE_NAMES.get(before, before.replace("BLENDER_", "").title())
+            switched = f"; render engine {was} → {'EEVEE' if wanted == 'EEVEE' else 'Cycles'}"
         if wanted == "EEVEE":  # EEVEE's own presets, measured in EEVEE
             settings = presets.EEVEE_PRESETS[self.preset]
             presets.apply_eevee(scene, settings)

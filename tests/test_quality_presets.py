@@ -111,6 +111,8 @@ def test_an_eevee_scene_gets_eevees_preset_and_stays_in_eevee(sandscape, name):
     assert result == {"FINISHED"} and scene.render.engine == "BLENDER_EEVEE"
     assert "Cycles → EEVEE" in reports[-1][1] and scene.eevee.taa_render_samples == \
         presets.EEVEE_PRESETS[name]["taa_render_samples"]
+    result, reports = operators.run_execute("sandscape.apply_quality_preset", preset=name, engine="CYCLES")
+    assert result == {"FINISHED"} and "EEVEE → Cycles" in reports[-1][1]  # Blender's spelling, not "Eevee"
 
 
 def test_eevee_presets_get_finer_in_order(sandscape):
