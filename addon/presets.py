@@ -57,7 +57,7 @@ PRESETS = {"DRAFT": _preset(16, 16), "PREVIEW": _preset(72, 64),
 # the camera tens of metres deep: dust metres off was smeared through them (the demo's walker
 # veiled grey; tests/test_eevee_froxel_depth.py). Twice the slices where time allows.
 # Volume shadows on (Blender's 16 steps): without them a cloud's underside gets the whole sun and
-# the clouds read as flat haze (tests/test_eevee.py, the clouds' shading against Cycles').
+# the clouds read as flat haze (tests/test_eevee_cloud_shading.py).
 _EEVEE_COMMON = {"volumetric_tile_size": "2", "clamp_surface_indirect": 0.0,
                  "volumetric_sample_distribution": 1.0, "use_volumetric_shadows": True}
 EEVEE_PRESETS = {"DRAFT": {"taa_render_samples": 16, "volumetric_samples": 64, **_EEVEE_COMMON},

@@ -5,10 +5,8 @@ import bpy
 from bpy.props import BoolProperty, EnumProperty
 
 from ..addon import optimize, presets
+from ..addon.post_passes import ENGINE_NAMES
 from .base import SandscapeOperator
-
-# As Blender's interface spells them ("Eevee" from the identifier was not)
-ENGINE_NAMES = {"BLENDER_EEVEE": "EEVEE", "CYCLES": "Cycles", "BLENDER_WORKBENCH": "Workbench"}
 
 
 class SANDSCAPE_OT_optimize_scene(SandscapeOperator, bpy.types.Operator):
@@ -81,6 +79,7 @@ class SANDSCAPE_OT_apply_quality_preset(SandscapeOperator, bpy.types.Operator):
         scene.render.engine = "BLENDER_EEVEE" if wanted == "EEVEE" else "CYCLES"
         switched = ""
         if scene.render.engine != before:
+            # As Blender spells them ("Eevee" from the identifier was not); other engines by theirs
             was = ENGINE_NAMES.get(before, before.replace("BLENDER_", "").title())
             switched = f"; render engine {was} → {'EEVEE' if wanted == 'EEVEE' else 'Cycles'}"
         if wanted == "EEVEE":  # EEVEE's own presets, measured in EEVEE

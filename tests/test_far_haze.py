@@ -251,7 +251,6 @@ def test_the_pixel_probe_sees_the_sky_through_the_far_haze(sandscape):
     assert (~hits["hit"][rows_up]).mean() > 0.5  # sky, beside the two far markers
 
 
-
 def _sky_overhead(unit_scale):
     """Cycles' look up at Add Clouds' layer through the far haze from the ground, the scene built
     at this unit scale, the clouds absorbing only and the dust box clear (no scattering noise): the
