@@ -18,7 +18,7 @@ import bpy
 from ..core import clouds
 from ..node_groups import cloud_density, weather_map
 from ..node_groups import helper as h
-from . import drivers
+from . import cloud_sunlight, drivers
 from . import ownership as own
 
 MODIFIER = "Sandscape Cloud Grid"
@@ -78,9 +78,10 @@ def _column_index(tree, corner_min, counts, voxel):
     return index.outputs[0]
 
 
-def build_tree(tree, material, density_inputs, weather_inputs, image, box, voxel):
+def build_tree(tree, material, density_inputs, weather_inputs, image, box, voxel, sunlight=None):
     """Weather (procedural group or painted image, once per column) -> Cloud Density -> Volume
-    Cube -> material."""
+    Cube (-> the sun's light let through, baked per voxel: sunlight, cloud_sunlight.march's
+    arguments after the volume) -> material."""
     tree.nodes.clear()
     _interface(tree)
     group_out = h.add_node(tree, "NodeGroupOutput")
@@ -118,9 +119,12 @@ def build_tree(tree, material, density_inputs, weather_inputs, image, box, voxel
     cube = h.add_node(tree, "GeometryNodeVolumeCube", name="Sandscape Cloud Voxels", label="Voxels",
                       inputs={"Background": CLEAR, "Min": corner_min, "Max": corner_max, **resolution})
     h.link(tree, density.outputs["Cloudiness"], cube.inputs["Density"])
+    volume = cube.outputs["Volume"]
+    if sunlight is not None:
+        volume = cloud_sunlight.march(tree, volume, **sunlight)
     with_material = h.add_node(tree, "GeometryNodeSetMaterial", name="Sandscape Cloud Material")
     with_material.inputs["Material"].default_value = material
-    h.link(tree, cube.outputs["Volume"], with_material.inputs["Geometry"])
+    h.link(tree, volume, with_material.inputs["Geometry"])
     h.link(tree, with_material.outputs["Geometry"], group_out.inputs[0])
     h.arrange(tree, set_widths=False)
 

@@ -13,7 +13,7 @@ import numpy as np
 from ..core import atmosphere as air_twin
 from ..core import cloud_shadows as twin
 from ..node_groups import helper as h
-from . import cloud_grid
+from . import cloud_grid, cloud_sunlight
 from . import ownership as own
 from .shot import frames_per_second
 from .sun_lamp import scene_sun, sun_angles
@@ -33,10 +33,12 @@ def wanted(scene):
 
 
 def unshaded(scene):
-    """The scene has a cloud layer and renders with EEVEE's Volume Shadows off: a cloud's underside
-    gets the whole sun (the EEVEE presets turn them on; they are the artist's otherwise)."""
-    return (wanted(scene) and not scene.eevee.use_volumetric_shadows
-            and own.scene_object(scene, own.CLOUDS) is not None)
+    """The scene renders with EEVEE's Volume Shadows off and has a cloud layer whose grid carries
+    no sun's light (procedural, or built without a sun lamp): a cloud's underside gets the whole
+    sun. The Volume Shadows are the artist's."""
+    layer = own.scene_object(scene, own.CLOUDS)
+    return (wanted(scene) and not scene.eevee.use_volumetric_shadows and layer is not None
+            and not cloud_sunlight.baked(layer))
 
 
 def caster(scene):

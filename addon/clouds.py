@@ -20,9 +20,10 @@ from ..core import cloud_shadows as shadow_twin
 from ..core import clouds as twin
 from ..node_groups import cloud_density, weather_map
 from ..node_groups import helper as h
-from . import cloud_grid, cloud_shadows, evaluation, far_haze, sky_eevee_clouds, units
+from . import cloud_grid, cloud_shadows, cloud_sunlight, evaluation, far_haze, sky_eevee_clouds, units
 from . import ownership as own
 from .shot import camera_views, frames_per_second, reach_points
+from .sun_lamp import scene_sun
 
 # A grid finer than this many voxels is followed by the exact twin (evaluating the twin at every
 # voxel takes about 8 s a million here; so fine a grid holds most of the exact twin's detail).
@@ -190,22 +191,30 @@ def _clear(tree):
     tree.nodes.clear()
 
 
-def grid_material(material, scene, s):
+def grid_wet(s):
+    """The grid's clamp: a painted map's precipitation varies over the ground, so the wettest cloud's."""
+    return float(twin.wet(1.0 if s["weather_source"] == "IMAGE" else s["precipitation"]))
+
+
+def grid_material(material, scene, s, sun=None):
     """The grid's cloudiness (interpolated by Cycles), clamped to 0..wet, x Density -> scattering
-    (core.clouds.density_from_cloudiness). A painted map's precipitation varies over the ground:
-    its clamp is the wettest cloud's."""
+    (core.clouds.density_from_cloudiness); with a sun lamp, the output Cycles renders, beside
+    EEVEE's from the sun's light baked in the grid (cloud_sunlight)."""
     tree = material.node_tree
     _clear(tree)
     grid = h.add_node(tree, "ShaderNodeAttribute", name="Sandscape Cloud Grid", label="Cloudiness Grid",
                       attribute_type="GEOMETRY", attribute_name="density")
-    precipitation = 1.0 if s["weather_source"] == "IMAGE" else s["precipitation"]
     positive = h.add_node(tree, "ShaderNodeClamp", label="Where Cloud: 0..Wet",
-                          inputs={"Min": 0.0, "Max": float(twin.wet(precipitation))})
+                          inputs={"Min": 0.0, "Max": grid_wet(s)})
     h.link(tree, grid.outputs["Fac"], positive.inputs["Value"])
     density = h.math(tree, "MULTIPLY", positive.outputs[0], parameters(scene, s)["density"], label="Density")
     density.name = "Sandscape Grid Density"
     output = h.add_node(tree, "ShaderNodeOutputMaterial", name="Sandscape Output")
     h.link(tree, scattering(tree, density.outputs[0], s), output.inputs["Volume"])
+    if sun is not None:
+        output.target = "CYCLES"
+        cloud_sunlight.eevee_output(tree, density.outputs[0], lambda tree, lit: scattering(tree, lit, s),
+                                    scene, sun)
     h.arrange(tree, set_widths=False)
 
 
@@ -328,11 +337,15 @@ def apply(scene, s, image=None, done=None):
     changes = []  # of the scene's render settings, for the report
     if s["evaluation"] == "GRID":
         own.set_mesh(layer, np.zeros((0, 3)), [])
-        grid_material(material, scene, s)
+        sun = scene_sun(scene)
+        grid_material(material, scene, s, sun)
         _modifier, tree = cloud_grid.ensure_modifier(layer)
         weather = weather_inputs(scene, s)
+        sunlight = None if sun is None else {
+            "sun": sun, "thickness": s["thickness"], "step": s["step"],
+            "density": parameters(scene, s)["density"], "wet": grid_wet(s)}
         cloud_grid.build_tree(tree, material, density_inputs(scene, s, done["region"], done["fade"], True),
-                              weather, image, done["box"], done["voxel"])
+                              weather, image, done["box"], done["voxel"], sunlight)
         cloud_grid.drift_with_wind(layer, scene.sandscape_atmosphere.wind,
                                    frames_per_second(scene))
         # Ray marching steps a grid by its voxel x the step rate: Step long, as procedurally.

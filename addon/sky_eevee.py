@@ -112,7 +112,7 @@ def _level_light(tree):
     # Combine Color: a driver on each channel's input, as for the sun's light.
     color = h.add_node(tree, "ShaderNodeCombineColor", name=GROUND_COLOR, label="Ground Colour")
     set_ground_colour(color, core_sand.SAND_COLOR)
-    clear = _sky_irradiance(tree, height.outputs[0])
+    clear = sky_irradiance(tree, height.outputs[0])
     sky = sky_eevee_clouds.build(tree, height.outputs[0], light.outputs[0], clear, color.outputs[0])
     level = h.add_node(tree, "ShaderNodeVectorMath", operation="ADD", label="Light on Level Sand")
     h.link(tree, direct.outputs[0], level.inputs[0])
@@ -149,7 +149,7 @@ def _with_disc(tree, view, sun, light, shown):
     return both.outputs[0]
 
 
-def _sky_irradiance(tree, height):
+def sky_irradiance(tree, height):
     """The sky's irradiance on level ground by the sine of the sun's elevation (the sky model's
     table, linear between its rows), through an RGB Curves node per channel."""
     degrees, columns = sky_sun.sky_rows()

@@ -9,6 +9,7 @@ import numpy as np
 
 MAX_TEXELS = 192  # along the longer side of the layer's box: the shadows' edges blur over a texel
 MAX_STEPS = 48  # along the sun's ray through the layer (a 6-degree sun's crosses 10 thicknesses)
+LOWEST_SINE = float(np.sin(np.radians(0.5)))  # a lower sun's ray is stepped as if it stood this high
 
 
 def unit(vector):
@@ -57,6 +58,22 @@ def transmittance(density_at, box, base, thickness, to_sun, steps, texels=MAX_TE
         depth += np.asarray(density_at(points), np.float64) * step
     return np.exp(-depth)
 
+
+def voxel_transmittance(cloudiness, corner, voxel, to_sun, thickness, steps, density, wet):
+    """exp(-optical depth) from each voxel's centre (cloudiness (nx, ny, nz) at corner + index x
+    voxel) towards the sun, as the cloud grid bakes it (addon/cloud_sunlight.py): `steps`
+    midpoint steps of thickness / sin(elevation) / steps along the ray, the extinction
+    clamp(cloudiness interpolated, 0, wet) x density, none outside the grid."""
+    to_sun = unit(to_sun)
+    across = thickness / steps / max(to_sun[2], LOWEST_SINE)
+    shape = np.shape(cloudiness)
+    centres = np.stack(np.meshgrid(*[corner[axis] + np.arange(shape[axis]) * voxel for axis in range(3)],
+                                   indexing="ij"), axis=-1)
+    depth = np.zeros(shape)
+    for k in range(steps):
+        points = centres + to_sun * (k + 0.5) * across
+        depth += np.clip(trilinear(cloudiness, corner, voxel, points), 0.0, wet)
+    return np.exp(-depth * across * density)
 
 
 def trilinear(values, corner, voxel, points):

@@ -141,8 +141,10 @@ def test_the_shadow_layer_is_made_for_eevee_once_and_goes_with_it():
 
 
 def test_add_clouds_says_when_eevee_would_render_them_unshaded(sandscape):
-    """EEVEE's Volume Shadows are the artist's: Add Clouds keeps them off and says so, the Clouds
-    section too, until an EEVEE preset turns them on (in Cycles nothing is said)."""
+    """A grid built with a sun lamp carries its sun's light (addon/cloud_sunlight.py); a procedural
+    layer does not, and with EEVEE's Volume Shadows off (the artist's; the presets leave them off)
+    its undersides get the whole sun: Add Clouds says so, and the Clouds section, until the
+    shadows are on (in Cycles nothing is said)."""
     from test_ui import RecordingLayout
 
     def labels():
@@ -154,17 +156,18 @@ def test_add_clouds_says_when_eevee_would_render_them_unshaded(sandscape):
     _sun_scene(scene, 40.0)
     values = {"coverage": 0.5, "seed": 5, "map_scale": 2000.0, "reach": 1.0, "voxel": 400.0}
     scene.render.engine = "BLENDER_EEVEE"
-    scene.eevee.use_volumetric_shadows = False
+    assert operators.run_execute("sandscape.apply_quality_preset", preset="DRAFT")[0] == {"FINISHED"}
+    assert not scene.eevee.use_volumetric_shadows
     assert sandscape.ui.panels.CLOUDS_UNSHADED_IN_EEVEE not in labels()  # no clouds yet
     result, reports = operators.run_execute("sandscape.add_clouds", **values)
-    assert result == {"FINISHED"} and not scene.eevee.use_volumetric_shadows
-    assert any("Volume Shadows kept off" in text for _, text in reports)
-    assert sandscape.ui.panels.CLOUDS_UNSHADED_IN_EEVEE in labels()
-    assert operators.run_execute("sandscape.apply_quality_preset", preset="DRAFT")[0] == {"FINISHED"}
-    assert scene.eevee.use_volumetric_shadows
+    assert result == {"FINISHED"} and not any("unshaded" in text for _, text in reports)
     assert sandscape.ui.panels.CLOUDS_UNSHADED_IN_EEVEE not in labels()
-    result, reports = operators.run_execute("sandscape.add_clouds", **values)
-    assert not any("Volume Shadows" in text for _, text in reports)
+    result, reports = operators.run_execute("sandscape.add_clouds", evaluation="PROCEDURAL", **values)
+    assert result == {"FINISHED"} and not scene.eevee.use_volumetric_shadows
+    assert any("in EEVEE unshaded" in text for _, text in reports)
+    assert sandscape.ui.panels.CLOUDS_UNSHADED_IN_EEVEE in labels()
+    scene.eevee.use_volumetric_shadows = True
+    assert sandscape.ui.panels.CLOUDS_UNSHADED_IN_EEVEE not in labels()
     scene.render.engine, scene.eevee.use_volumetric_shadows = "CYCLES", False
     assert sandscape.ui.panels.CLOUDS_UNSHADED_IN_EEVEE not in labels()
 

@@ -234,7 +234,8 @@ class SANDSCAPE_PT_render(SandscapeSubPanel, bpy.types.Panel):
 
 
 CLOUD_SHADOWS_IN_EEVEE = "EEVEE: the clouds' ground shadows from Add Clouds"
-CLOUDS_UNSHADED_IN_EEVEE = "EEVEE's Volume Shadows are off (Render ▸ Shadows): the clouds render unshaded"
+CLOUDS_UNSHADED_IN_EEVEE = ("Unshaded in EEVEE: Voxel Grid with a sun lamp bakes the clouds' sunlight "
+                            "(or turn on Render ▸ Shadows ▸ Volume Shadows)")
 CLOUD_SHADOWS_STALE = "EEVEE's cloud shadows are out of date (the sun moved): Add Clouds again"
 
 
@@ -244,7 +245,7 @@ ENGINE_NOTES = {
     "Sun and Air": "Density: Rayleigh's phase is Cycles only",
     "Denoise": "Cycles only: it reads Cycles' denoising passes",
     "Light": "Mie: Cycles only; EEVEE merges the dual lobes",
-    "Evaluation": "Step: Cycles only (EEVEE: the presets' volume tiles)",
+    "Evaluation": "Step: Cycles' marching; in EEVEE only the grid's march to the sun",
 }
 
 

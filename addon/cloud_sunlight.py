@@ -1,0 +1,142 @@
+"""The cloud grid's sunlight for EEVEE: the light let through towards the sun, baked per voxel.
+
+EEVEE's own volume shadows march towards a sun only until the view's frustum ends, so a cloud
+layer lit from behind the camera, or from the side, was hardly shaded (README, *The clouds shade
+themselves in EEVEE*). Here geometry nodes march each voxel's optical depth towards the scene's
+sun lamp through the density grid once per evaluation (core.cloud_shadows.voxel_transmittance is
+the twin) and store it as a grid, T. The sun's direction is driven by the lamp, so the light
+follows a turned sun without Python.
+
+The material's EEVEE output then splits the extinction: a share T scatters as in Cycles (EEVEE
+lights it with the sun and the world), the rest absorbs and, in place of the world's light it
+would have scattered, emits the ambient light of EEVEE's lighting world (two hemispheres: the
+sky's light on level sand above, the lit sand's below; addon/sky_eevee.py). That is single
+scattering with the sun's light let through exactly. With EEVEE's Volume Shadows on (the
+artist's), a driver sets T to 1: EEVEE shades the clouds itself, as before, not twice.
+"""
+
+import math
+
+from ..core import cloud_shadows as shadow_twin
+from ..core import sand as core_sand
+from ..node_groups import helper as h
+from . import drivers, sky_eevee
+
+GRID = "sun_transmittance"
+SUN_DIRECTION = "Sandscape Cloud Sun Direction"
+SHADOWS_SWITCH = "Sandscape Cloud EEVEE Shadows"
+OUTPUT = "Sandscape EEVEE Output"
+
+
+def march(tree, volume, sun, thickness, step, density, wet):
+    """Geometry nodes: the layer's volume socket -> the volume with GRID, exp(-optical depth)
+    from each voxel's centre towards the sun through `thickness` (midpoint steps of the density
+    clamp(cloudiness, 0, wet) x density, at most MAX_STEPS as for the shadow map); the density
+    grid stored again after it, as EEVEE draws nothing of a volume whose last grid came from Field
+    to Grid."""
+    to_sun = sun.matrix_world.to_3x3().col[2]
+    steps = shadow_twin.steps_for(thickness, (to_sun[0], to_sun[1], max(to_sun[2], shadow_twin.LOWEST_SINE)),
+                                  step)
+    direction = h.add_node(tree, "ShaderNodeCombineXYZ", name=SUN_DIRECTION, label="To the Sun (driven)")
+    drivers.follow_lamp_axis(direction.inputs[:3], sun)
+    unit = h.vector_math(tree, "NORMALIZE", direction.outputs[0])
+    axes = h.add_node(tree, "ShaderNodeSeparateXYZ")
+    h.link(tree, unit.outputs[0], axes.inputs[0])
+    sine = h.math(tree, "MAXIMUM", axes.outputs["Z"], shadow_twin.LOWEST_SINE,
+                  label="Sine of the Sun's Elevation")
+    across = h.math(tree, "DIVIDE", thickness / steps, sine.outputs[0], label="Step Along the Ray")
+    grid = h.add_node(tree, "GeometryNodeGetNamedGrid", inputs={"Name": "density"}, label="Cloudiness")
+    h.link(tree, volume, grid.inputs["Volume"])
+    position = h.position(tree)
+    total = None
+    for k in range(steps):
+        reach = h.math(tree, "MULTIPLY", across.outputs[0], k + 0.5)
+        offset = h.vector_math(tree, "SCALE", unit.outputs[0], Scale=0.0)
+        h.link(tree, reach.outputs[0], offset.inputs["Scale"])
+        point = h.vector_math(tree, "ADD", position.outputs["Position"], offset.outputs[0])
+        sample = h.add_node(tree, "GeometryNodeSampleGrid", label=f"Step {k + 1}")
+        h.link(tree, grid.outputs["Grid"], sample.inputs["Grid"])
+        h.link(tree, point.outputs[0], sample.inputs["Position"])
+        cloud = h.add_node(tree, "ShaderNodeClamp", inputs={"Min": 0.0, "Max": float(wet)})
+        h.link(tree, sample.outputs[0], cloud.inputs["Value"])
+        total = cloud.outputs[0] if total is None else h.math(tree, "ADD", total, cloud.outputs[0]).outputs[0]
+    depth = h.math(tree, "MULTIPLY", total, across.outputs[0], label="Optical Depth ÷ Density")
+    light = h.math(tree, "EXPONENT", h.math(tree, "MULTIPLY", depth.outputs[0], -float(density)).outputs[0])
+    baked = h.add_node(tree, "GeometryNodeFieldToGrid", label="Per Voxel")
+    baked.grid_items.new("FLOAT", "Light")
+    h.link(tree, grid.outputs["Grid"], baked.inputs["Topology"])
+    h.link(tree, light.outputs[0], baked.inputs["Light"])
+    store = h.add_node(tree, "GeometryNodeStoreNamedGrid", inputs={"Name": GRID},
+                       label="Sun's Light Let Through")
+    h.link(tree, volume, store.inputs["Volume"])
+    h.link(tree, baked.outputs["Light"], store.inputs["Grid"])
+    again = h.add_node(tree, "GeometryNodeGetNamedGrid", inputs={"Name": "density"})
+    h.link(tree, store.outputs[0], again.inputs["Volume"])
+    last = h.add_node(tree, "GeometryNodeStoreNamedGrid", inputs={"Name": "density"}, label="Density Last")
+    h.link(tree, again.outputs["Volume"], last.inputs["Volume"])
+    h.link(tree, again.outputs["Grid"], last.inputs["Grid"])
+    return last.outputs[0]
+
+
+def baked(layer):
+    """Whether the layer's grid carries the sun's light (a grid built with a sun lamp)."""
+    modifier = next((m for m in layer.modifiers if m.type == "NODES"), None)
+    tree = modifier.node_group if modifier is not None else None
+    return tree is not None and SUN_DIRECTION in tree.nodes
+
+
+def _ground_colour(scene):
+    """The colour EEVEE's lighting world gives the ground (the sand last added), else the sand's."""
+    tree = scene.world.node_tree if scene.world is not None and scene.world.node_tree else None
+    node = tree.nodes.get(sky_eevee.GROUND_COLOR) if tree is not None else None
+    if node is None:
+        return tuple(core_sand.SAND_COLOR[:3])
+    return tuple(float(node.inputs[index].default_value) for index in range(3))
+
+
+def _ambient(tree, sun, ground):
+    """Colour socket: the mean radiance of EEVEE's lighting world, (sky + lit ground) / (2 pi),
+    from the lamp (driven) and the sky model's table."""
+    direction = h.add_node(tree, "ShaderNodeCombineXYZ", name=SUN_DIRECTION, label="To the Sun (driven)")
+    drivers.follow_lamp_axis(direction.inputs[:3], sun)
+    axes = h.add_node(tree, "ShaderNodeSeparateXYZ")
+    h.link(tree, h.vector_math(tree, "NORMALIZE", direction.outputs[0]).outputs[0], axes.inputs[0])
+    height = h.math(tree, "MAXIMUM", axes.outputs["Z"], 0.0, label="Sine of the Sun's Elevation")
+    light = h.add_node(tree, "ShaderNodeCombineColor", label="Sun Strength × Colour (driven)")
+    drivers.follow_lamp_light(light.inputs[:3], sun)
+    sky = sky_eevee.sky_irradiance(tree, height.outputs[0])
+    level = h.vector_math(tree, "MULTIPLY_ADD", light.outputs[0], (0.0, 0.0, 0.0), c=sky,
+                          label="Light on Level Sand")
+    h.link(tree, height.outputs[0], level.inputs[1])
+    below = h.vector_math(tree, "MULTIPLY", level.outputs[0], ground, label="Lit Sand × π")
+    both = h.vector_math(tree, "ADD", sky, below.outputs[0])
+    mean = h.vector_math(tree, "SCALE", both.outputs[0], Scale=0.5 / math.pi, label="Mean Radiance")
+    return mean.outputs[0]
+
+
+def eevee_output(tree, density, scattering, scene, sun):
+    """The material's EEVEE output for a baked grid: density socket -> a share T scattering
+    (scattering(tree, density socket) -> volume socket), the rest absorbing and emitting the
+    lighting world's mean radiance. With the scene's Volume Shadows on, T is 1."""
+    attribute = h.add_node(tree, "ShaderNodeAttribute", attribute_type="GEOMETRY", attribute_name=GRID,
+                           label="Sun's Light Let Through")
+    switch = h.add_node(tree, "ShaderNodeValue", name=SHADOWS_SWITCH, label="EEVEE Shadows On (driven)")
+    drivers.drive(switch.outputs[0], "default_value", "float(on)",
+                  [("on", "SCENE", scene, "eevee.use_volumetric_shadows")])
+    let_through = h.math(tree, "MAXIMUM", attribute.outputs["Fac"], switch.outputs[0])
+    lit = h.math(tree, "MULTIPLY", density, let_through.outputs[0], label="Lit Share")
+    unlit = h.math(tree, "SUBTRACT", density, lit.outputs[0], label="Unlit Share")
+    absorbed = h.add_node(tree, "ShaderNodeVolumeAbsorption", inputs={"Color": (0.0, 0.0, 0.0, 1.0)})
+    h.link(tree, unlit.outputs[0], absorbed.inputs["Density"])
+    glow = h.add_node(tree, "ShaderNodeEmission", label="The World's Light")
+    h.link(tree, _ambient(tree, sun, _ground_colour(scene)), glow.inputs["Color"])
+    h.link(tree, unlit.outputs[0], glow.inputs["Strength"])
+    first = h.add_node(tree, "ShaderNodeAddShader")
+    h.link(tree, scattering(tree, lit.outputs[0]), first.inputs[0])
+    h.link(tree, absorbed.outputs[0], first.inputs[1])
+    both = h.add_node(tree, "ShaderNodeAddShader")
+    h.link(tree, first.outputs[0], both.inputs[0])
+    h.link(tree, glow.outputs[0], both.inputs[1])
+    output = h.add_node(tree, "ShaderNodeOutputMaterial", name=OUTPUT, target="EEVEE")
+    h.link(tree, both.outputs[0], output.inputs["Volume"])
+    return output

@@ -1,0 +1,98 @@
+"""The sun's light let through, baked per voxel of the cloud grid (addon/cloud_sunlight.py): the
+geometry nodes' march against its numpy twin (core.cloud_shadows.voxel_transmittance), the twin
+against exp(-sigma d / sin e) through a uniform layer, and the light following a turned sun."""
+
+import importlib
+import math
+
+import bpy
+import numpy as np
+
+from core import cloud_shadows as twin
+from devtools import readback, scenes, session
+
+clouds = importlib.import_module(f"{session.MODULE}.addon.clouds")
+cloud_sunlight = importlib.import_module(f"{session.MODULE}.addon.cloud_sunlight")
+
+MARCH_TOLERANCE = 1e-3  # float32 sums of up to 48 steps against float64
+SMALL = {"reach": 3000.0, "voxel": 150.0, "map_scale": 2000.0, "shape_scale": 600.0, "coverage": 0.6}
+
+
+def _sun(elevation, azimuth):
+    lamp = bpy.data.objects.new("Artist Sun", bpy.data.lights.new("Artist Sun", "SUN"))
+    bpy.context.scene.collection.objects.link(lamp)
+    lamp.rotation_euler = (math.pi / 2 - math.radians(elevation), 0.0, math.pi - math.radians(azimuth))
+    return lamp
+
+
+def _layer_with_sun(elevation, azimuth):
+    bpy.ops.wm.read_homefile(use_empty=True)
+    scene = bpy.context.scene
+    scenes.camera("PERSP", location=(200.0, -300.0, 2.0), rotation=(math.radians(80.0), 0.0, 0.4))
+    scene.camera.data.clip_end = 1e5
+    lamp = _sun(elevation, azimuth)
+    assert bpy.ops.sandscape.add_clouds(**SMALL) == {"FINISHED"}
+    layer = next(o for o in scene.objects if o.get("sandscape_object") == "clouds")
+    return scene, layer, lamp
+
+
+def _baked_and_twin(scene, layer, lamp):
+    s = clouds.scene_settings(scene)
+    done = clouds.plan(scene, s)
+    corner, _, counts = done["box"]
+    axes = [corner[axis] + np.arange(counts[axis]) * done["voxel"] for axis in range(3)]
+    centres = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, 3)
+    cloudiness = readback.grid_values(layer, centres).reshape(counts)
+    baked = readback.grid_values(layer, centres, cloud_sunlight.GRID).reshape(counts)
+    to_sun = np.array(lamp.matrix_world.to_3x3().col[2])
+    steps = twin.steps_for(s["thickness"], to_sun, s["step"])
+    expected = twin.voxel_transmittance(cloudiness, corner, done["voxel"], to_sun, s["thickness"], steps,
+                                        clouds.parameters(scene, s)["density"], clouds.grid_wet(s))
+    return baked, expected, cloudiness
+
+
+def test_the_grid_bakes_the_suns_light_as_its_twin_marches_it(sandscape):
+    """At every voxel centre, from the grid's own cloudiness; the sun 25 degrees up."""
+    scene, layer, lamp = _layer_with_sun(25.0, 140.0)
+    baked, expected, cloudiness = _baked_and_twin(scene, layer, lamp)
+    cloudy = cloudiness > 0.0
+    error = np.abs(baked - expected)
+    print(f"{baked.size:,} voxels, {cloudy.mean():.0%} in cloud: light let through "
+          f"{baked[cloudy].mean():.3f} there (twin {expected[cloudy].mean():.3f}), largest difference "
+          f"{error.max():.1e}")
+    assert cloudy.mean() > 0.05 and 0.05 < expected[cloudy].mean() < 0.95, "should be partly shaded"
+    assert error.max() <= MARCH_TOLERANCE
+    assert cloud_sunlight.baked(layer)
+
+
+def test_the_baked_light_follows_a_turned_sun(sandscape):
+    """The lamp's axis drives the march: turned by hand, the grid is the twin's for the new sun."""
+    scene, layer, lamp = _layer_with_sun(25.0, 140.0)
+    before, _, _ = _baked_and_twin(scene, layer, lamp)
+    lamp.rotation_euler = (math.pi / 2 - math.radians(40.0), 0.0, math.pi - math.radians(300.0))
+    bpy.context.view_layer.update()
+    after, expected, cloudiness = _baked_and_twin(scene, layer, lamp)
+    s = clouds.scene_settings(scene)
+    # the step count stays the build's, for the sun at 25 degrees; the twin is given the same
+    steps = twin.steps_for(s["thickness"], (math.cos(math.radians(25.0)), 0.0, math.sin(math.radians(25.0))),
+                           s["step"])
+    assert np.abs(after - before).max() > 0.3
+    done = clouds.plan(scene, s)
+    again = twin.voxel_transmittance(cloudiness, done["box"][0], done["voxel"],
+                                     np.array(lamp.matrix_world.to_3x3().col[2]), s["thickness"], steps,
+                                     clouds.parameters(scene, s)["density"], clouds.grid_wet(s))
+    assert np.abs(after - again).max() <= MARCH_TOLERANCE
+
+
+def test_the_twin_lets_through_exp_of_the_optical_depth_of_a_uniform_layer():
+    """Cloudiness 1 everywhere in a layer 1 km thick: exp(-sigma (top - z) / sin e), within one
+    step's midpoint error at the top (the sun along +x, so a narrow strip of grid holds the rays)."""
+    corner, voxel, density = (-1000.0, -100.0, 1000.0), 100.0, 2e-3
+    cloudiness = np.ones((71, 3, 11))
+    heights = corner[2] + np.arange(11) * voxel
+    for elevation in (10.0, 45.0, 80.0):
+        to_sun = (math.cos(math.radians(elevation)), 0.0, math.sin(math.radians(elevation)))
+        light = twin.voxel_transmittance(cloudiness, corner, voxel, to_sun, 1000.0, 48, density, 1.0)
+        exact = np.exp(-density * (2000.0 - heights) / math.sin(math.radians(elevation)))
+        step = 1000.0 / 48 / math.sin(math.radians(elevation))
+        assert np.allclose(light[10, 1], exact, rtol=0, atol=density * step)
