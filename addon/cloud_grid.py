@@ -82,6 +82,8 @@ def build_tree(tree, material, density_inputs, weather_inputs, image, box, voxel
     """Weather (procedural group or painted image, once per column) -> Cloud Density -> Volume
     Cube (-> the sun's light let through, baked per voxel: sunlight, cloud_sunlight.march's
     arguments after the volume) -> material."""
+    if tree.animation_data is not None:  # the sun's direction, driven in a grid built with a sun
+        tree.animation_data_clear()
     tree.nodes.clear()
     _interface(tree)
     group_out = h.add_node(tree, "NodeGroupOutput")

@@ -96,3 +96,17 @@ def test_the_twin_lets_through_exp_of_the_optical_depth_of_a_uniform_layer():
         exact = np.exp(-density * (2000.0 - heights) / math.sin(math.radians(elevation)))
         step = 1000.0 / 48 / math.sin(math.radians(elevation))
         assert np.allclose(light[10, 1], exact, rtol=0, atol=density * step)
+
+
+def test_a_grid_built_without_a_sun_carries_no_light_and_no_stale_drivers(sandscape):
+    """The sun deleted and Add Clouds run again: one output for both engines, no driver left
+    reading a lamp that is gone."""
+    scene, layer, lamp = _layer_with_sun(25.0, 140.0)
+    bpy.data.objects.remove(lamp)
+    assert bpy.ops.sandscape.add_clouds(**SMALL) == {"FINISHED"}
+    layer = next(o for o in scene.objects if o.get("sandscape_object") == "clouds")
+    tree = layer.modifiers[0].node_group
+    assert not cloud_sunlight.baked(layer)
+    assert tree.animation_data is None or not tree.animation_data.drivers
+    nodes = layer.active_material.node_tree.nodes
+    assert cloud_sunlight.OUTPUT not in nodes and nodes["Sandscape Output"].target == "ALL"
