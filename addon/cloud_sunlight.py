@@ -9,10 +9,12 @@ follows a turned sun without Python.
 
 The material's EEVEE output then splits the extinction: a share T scatters as in Cycles (EEVEE
 lights it with the sun and the world), the rest absorbs and, in place of the world's light it
-would have scattered, emits the ambient light of EEVEE's lighting world (two hemispheres: the
-sky's light on level sand above, the lit sand's below; addon/sky_eevee.py). That is single
-scattering with the sun's light let through exactly. With EEVEE's Volume Shadows on (the
-artist's), a driver sets T to 1: EEVEE shades the clouds itself, as before, not twice.
+would have scattered, emits seed 001's ambient term from EEVEE's lighting world's two
+hemispheres (addon/sky_eevee.py): the lit sand's light below at the cloud's base, the sky's
+above at its top. That is single scattering with the sun's light let through exactly (EEVEE
+clamps a volume's emission at zero, so the sun's light cannot be taken away from a scatterer).
+With EEVEE's Volume Shadows on (the artist's), a driver sets T to 1: EEVEE shades the clouds
+itself, as before, not twice.
 """
 
 import math
@@ -94,9 +96,12 @@ def _ground_colour(scene):
     return tuple(float(node.inputs[index].default_value) for index in range(3))
 
 
-def _ambient(tree, sun, ground):
-    """Colour socket: the mean radiance of EEVEE's lighting world, (sky + lit ground) / (2 pi),
-    from the lamp (driven) and the sky model's table."""
+def _ambient(tree, sun, ground, base, thickness):
+    """Colour socket: the light a cloud's inside gets from EEVEE's lighting world (two
+    hemispheres, from the lamp (driven) and the sky model's table): seed 001's ambient term, the
+    cloud's base colour to its top colour by the height in the layer. At the base the lit sand's
+    hemisphere below (the sky hidden by the cloud above), at the top the sky's above; each half
+    the sphere's mean radiance, E / (2 pi)."""
     direction = h.add_node(tree, "ShaderNodeCombineXYZ", name=SUN_DIRECTION, label="To the Sun (driven)")
     drivers.follow_lamp_axis(direction.inputs[:3], sun)
     axes = h.add_node(tree, "ShaderNodeSeparateXYZ")
@@ -109,12 +114,20 @@ def _ambient(tree, sun, ground):
                           label="Light on Level Sand")
     h.link(tree, height.outputs[0], level.inputs[1])
     below = h.vector_math(tree, "MULTIPLY", level.outputs[0], ground, label="Lit Sand × π")
-    both = h.vector_math(tree, "ADD", sky, below.outputs[0])
-    mean = h.vector_math(tree, "SCALE", both.outputs[0], Scale=0.5 / math.pi, label="Mean Radiance")
-    return mean.outputs[0]
+    where = h.add_node(tree, "ShaderNodeSeparateXYZ")
+    h.link(tree, h.position(tree).outputs["Position"], where.inputs[0])
+    fraction = h.add_node(tree, "ShaderNodeMapRange", label="Height in the Layer",
+                          inputs={"From Min": float(base), "From Max": float(base + thickness)})
+    h.link(tree, where.outputs["Z"], fraction.inputs["Value"])
+    mix = h.add_node(tree, "ShaderNodeMix", data_type="VECTOR", label="Base to Top")
+    h.link(tree, fraction.outputs["Result"], mix.inputs["Factor"])
+    h.link(tree, below.outputs[0], mix.inputs["A"])
+    h.link(tree, sky, mix.inputs["B"])
+    ambient = h.vector_math(tree, "SCALE", mix.outputs["Result"], Scale=0.5 / math.pi, label="Radiance")
+    return ambient.outputs[0]
 
 
-def eevee_output(tree, density, scattering, scene, sun):
+def eevee_output(tree, density, scattering, scene, sun, base, thickness):
     """The material's EEVEE output for a baked grid: density socket -> a share T scattering
     (scattering(tree, density socket) -> volume socket), the rest absorbing and emitting the
     lighting world's mean radiance. With the scene's Volume Shadows on, T is 1."""
@@ -129,7 +142,7 @@ def eevee_output(tree, density, scattering, scene, sun):
     absorbed = h.add_node(tree, "ShaderNodeVolumeAbsorption", inputs={"Color": (0.0, 0.0, 0.0, 1.0)})
     h.link(tree, unlit.outputs[0], absorbed.inputs["Density"])
     glow = h.add_node(tree, "ShaderNodeEmission", label="The World's Light")
-    h.link(tree, _ambient(tree, sun, _ground_colour(scene)), glow.inputs["Color"])
+    h.link(tree, _ambient(tree, sun, _ground_colour(scene), base, thickness), glow.inputs["Color"])
     h.link(tree, unlit.outputs[0], glow.inputs["Strength"])
     first = h.add_node(tree, "ShaderNodeAddShader")
     h.link(tree, scattering(tree, lit.outputs[0]), first.inputs[0])

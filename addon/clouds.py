@@ -214,7 +214,7 @@ def grid_material(material, scene, s, sun=None):
     if sun is not None:
         output.target = "CYCLES"
         cloud_sunlight.eevee_output(tree, density.outputs[0], lambda tree, lit: scattering(tree, lit, s),
-                                    scene, sun)
+                                    scene, sun, s["base"], s["thickness"])
     h.arrange(tree, set_widths=False)
 
 

@@ -110,3 +110,5 @@ def test_a_grid_built_without_a_sun_carries_no_light_and_no_stale_drivers(sandsc
     assert tree.animation_data is None or not tree.animation_data.drivers
     nodes = layer.active_material.node_tree.nodes
     assert cloud_sunlight.OUTPUT not in nodes and nodes["Sandscape Output"].target == "ALL"
+    scene.render.engine = "BLENDER_EEVEE"
+    assert not sandscape.addon.cloud_shadows.unshaded(scene)  # no sun: nothing to shade

@@ -69,7 +69,7 @@ def test_clouds_are_shaded_in_eevee_as_in_cycles(eevee_scene, sandscape, azimuth
 def test_eevees_own_volume_shadows_shade_the_clouds_less_like_cycles(eevee_scene, sandscape):
     """With the artist's Volume Shadows on, a driver sets the baked light to 1 and EEVEE shades
     the clouds itself: with the sun behind the camera, further from Cycles on 5.2. Not on 5.0,
-    whose own shadows shade this view (0.933 against the baked light's 0.879 when written)."""
+    whose own shadows shade this view a little better than the baked light (README)."""
     if bpy.app.version < (5, 2, 0):
         pytest.skip("Blender 5.0's own Volume Shadows shade clouds lit from behind the camera (README)")
     sky = _cloud_view(eevee_scene, sandscape, 180.0)
