@@ -34,8 +34,8 @@ def wanted(scene):
 
 def unshaded(scene):
     """The scene renders with EEVEE's Volume Shadows off and has a sun and a cloud layer whose grid
-    carries no sun's light (procedural, or built before the sun): a cloud's underside gets the
-    whole sun. The Volume Shadows are the artist's."""
+    carries no sun's light (procedural, or built before the sun or for Cycles): a cloud's
+    underside gets the whole sun. The Volume Shadows are the artist's."""
     layer = own.scene_object(scene, own.CLOUDS)
     return (wanted(scene) and not scene.eevee.use_volumetric_shadows and layer is not None
             and not cloud_sunlight.baked(layer) and scene_sun(scene) is not None)

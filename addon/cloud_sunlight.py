@@ -5,7 +5,8 @@ layer lit from behind the camera, or from the side, was hardly shaded (README, *
 themselves in EEVEE*). Here geometry nodes march each voxel's optical depth towards the scene's
 sun lamp through the density grid once per evaluation (core.cloud_shadows.voxel_transmittance is
 the twin) and store it as a grid, T. The sun's direction is driven by the lamp, so the light
-follows a turned sun without Python.
+follows a turned sun without Python. Built, as the clouds' shadow mesh is, only for a scene that
+renders with EEVEE when Add Clouds runs: a Cycles render would evaluate the march for nothing.
 
 The material's EEVEE output then splits the extinction: a share T scatters as in Cycles (EEVEE
 lights it with the sun and the world), the rest absorbs and, in place of the world's light it
@@ -134,7 +135,7 @@ def eevee_output(tree, density, scattering, scene, sun, base, thickness):
     attribute = h.add_node(tree, "ShaderNodeAttribute", attribute_type="GEOMETRY", attribute_name=GRID,
                            label="Sun's Light Let Through")
     switch = h.add_node(tree, "ShaderNodeValue", name=SHADOWS_SWITCH, label="EEVEE Shadows On (driven)")
-    drivers.drive(switch.outputs[0], "default_value", "float(on)",
+    drivers.drive(switch.outputs[0], "default_value", "on",
                   [("on", "SCENE", scene, "eevee.use_volumetric_shadows")])
     let_through = h.math(tree, "MAXIMUM", attribute.outputs["Fac"], switch.outputs[0])
     lit = h.math(tree, "MULTIPLY", density, let_through.outputs[0], label="Lit Share")

@@ -337,7 +337,7 @@ def apply(scene, s, image=None, done=None):
     changes = []  # of the scene's render settings, for the report
     if s["evaluation"] == "GRID":
         own.set_mesh(layer, np.zeros((0, 3)), [])
-        sun = scene_sun(scene)
+        sun = scene_sun(scene) if cloud_shadows.wanted(scene) else None  # EEVEE's alone
         grid_material(material, scene, s, sun)
         _modifier, tree = cloud_grid.ensure_modifier(layer)
         weather = weather_inputs(scene, s)

@@ -7,8 +7,8 @@ from ..addon.settings import CLOUD_LIMITS, cloud_fields
 from .base import SandscapeOperator, SceneSettings, editable_problem, has_camera, value_problem
 
 FIELDS = cloud_fields(True)
-UNSHADED = ("; in EEVEE unshaded: the clouds' undersides get the whole sun (Voxel Grid with a sun lamp bakes "
-            "their sun's light; or turn on Render ▸ Shadows ▸ Volume Shadows)")
+UNSHADED = ("; in EEVEE unshaded: the clouds' undersides get the whole sun (Voxel Grid bakes their sun's "
+            "light; or turn on Render ▸ Shadows ▸ Volume Shadows)")
 
 
 class SANDSCAPE_OT_add_clouds(SceneSettings, SandscapeOperator, bpy.types.Operator):

@@ -31,6 +31,7 @@ def _layer_with_sun(elevation, azimuth):
     scenes.camera("PERSP", location=(200.0, -300.0, 2.0), rotation=(math.radians(80.0), 0.0, 0.4))
     scene.camera.data.clip_end = 1e5
     lamp = _sun(elevation, azimuth)
+    scene.render.engine = "BLENDER_EEVEE"
     assert bpy.ops.sandscape.add_clouds(**SMALL) == {"FINISHED"}
     layer = next(o for o in scene.objects if o.get("sandscape_object") == "clouds")
     return scene, layer, lamp
@@ -112,3 +113,26 @@ def test_a_grid_built_without_a_sun_carries_no_light_and_no_stale_drivers(sandsc
     assert cloud_sunlight.OUTPUT not in nodes and nodes["Sandscape Output"].target == "ALL"
     scene.render.engine = "BLENDER_EEVEE"
     assert not sandscape.addon.cloud_shadows.unshaded(scene)  # no sun: nothing to shade
+
+
+def test_a_scene_that_renders_with_cycles_gets_no_march(sandscape):
+    """Cycles shades the clouds through the volume itself: the march would be evaluated for nothing.
+    Switched to EEVEE, the Clouds section says so until Add Clouds runs again."""
+    scene, layer, lamp = _layer_with_sun(25.0, 140.0)
+    scene.render.engine = "CYCLES"
+    assert bpy.ops.sandscape.add_clouds(**SMALL) == {"FINISHED"}
+    assert not cloud_sunlight.baked(layer)
+    assert cloud_sunlight.OUTPUT not in layer.active_material.node_tree.nodes
+    scene.render.engine = "BLENDER_EEVEE"
+    assert sandscape.addon.cloud_shadows.unshaded(scene)
+    assert bpy.ops.sandscape.add_clouds(**SMALL) == {"FINISHED"}
+    assert cloud_sunlight.baked(layer) and not sandscape.addon.cloud_shadows.unshaded(scene)
+
+
+def test_the_sunlights_drivers_run_without_python(sandscape):
+    """A farm renders with Python auto-run off: every driver the light adds is a simple expression."""
+    _scene, layer, _lamp = _layer_with_sun(25.0, 140.0)
+    trees = (layer.modifiers[0].node_group, layer.active_material.node_tree)
+    found = [curve.driver for tree in trees for curve in tree.animation_data.drivers]
+    assert len(found) >= 7  # the sun's axis in both trees, its light, the shadows' switch
+    assert all(driver.is_simple_expression for driver in found)

@@ -234,8 +234,8 @@ class SANDSCAPE_PT_render(SandscapeSubPanel, bpy.types.Panel):
 
 
 CLOUD_SHADOWS_IN_EEVEE = "EEVEE: the clouds' ground shadows from Add Clouds"
-CLOUDS_UNSHADED_IN_EEVEE = ("Unshaded in EEVEE: Voxel Grid with a sun lamp bakes the clouds' sunlight "
-                            "(or turn on Render ▸ Shadows ▸ Volume Shadows)")
+CLOUDS_UNSHADED_IN_EEVEE = ("Unshaded in EEVEE: Add Clouds again (Voxel Grid) to bake their sunlight, "
+                            "or turn on Render ▸ Shadows ▸ Volume Shadows")
 CLOUD_SHADOWS_STALE = "EEVEE's cloud shadows are out of date (the sun moved): Add Clouds again"
 
 
