@@ -40,13 +40,9 @@ def march(tree, volume, sun, thickness, step, density, wet):
     to_sun = sun.matrix_world.to_3x3().col[2]
     steps = shadow_twin.steps_for(thickness, (to_sun[0], to_sun[1], max(to_sun[2], shadow_twin.LOWEST_SINE)),
                                   step)
-    direction = h.add_node(tree, "ShaderNodeCombineXYZ", name=SUN_DIRECTION, label="To the Sun (driven)")
+    direction, unit, sine, _ = sky_eevee.sun_nodes(tree, SUN_DIRECTION, lowest=shadow_twin.LOWEST_SINE,
+                                                   with_light=False)
     drivers.follow_lamp_axis(direction.inputs[:3], sun)
-    unit = h.vector_math(tree, "NORMALIZE", direction.outputs[0])
-    axes = h.add_node(tree, "ShaderNodeSeparateXYZ")
-    h.link(tree, unit.outputs[0], axes.inputs[0])
-    sine = h.math(tree, "MAXIMUM", axes.outputs["Z"], shadow_twin.LOWEST_SINE,
-                  label="Sine of the Sun's Elevation")
     across = h.math(tree, "DIVIDE", thickness / steps, sine.outputs[0], label="Step Along the Ray")
     grid = h.add_node(tree, "GeometryNodeGetNamedGrid", inputs={"Name": "density"}, label="Cloudiness")
     h.link(tree, volume, grid.inputs["Volume"])
@@ -54,7 +50,7 @@ def march(tree, volume, sun, thickness, step, density, wet):
     total = None
     for k in range(steps):
         reach = h.math(tree, "MULTIPLY", across.outputs[0], k + 0.5)
-        offset = h.vector_math(tree, "SCALE", unit.outputs[0], Scale=0.0)
+        offset = h.vector_math(tree, "SCALE", unit, Scale=0.0)
         h.link(tree, reach.outputs[0], offset.inputs["Scale"])
         point = h.vector_math(tree, "ADD", position.outputs["Position"], offset.outputs[0])
         sample = h.add_node(tree, "GeometryNodeSampleGrid", label=f"Step {k + 1}")
@@ -103,12 +99,8 @@ def _ambient(tree, sun, ground, base, thickness):
     cloud's base colour to its top colour by the height in the layer. At the base the lit sand's
     hemisphere below (the sky hidden by the cloud above), at the top the sky's above; each half
     the sphere's mean radiance, E / (2 pi)."""
-    direction = h.add_node(tree, "ShaderNodeCombineXYZ", name=SUN_DIRECTION, label="To the Sun (driven)")
+    direction, _, height, light = sky_eevee.sun_nodes(tree, SUN_DIRECTION)
     drivers.follow_lamp_axis(direction.inputs[:3], sun)
-    axes = h.add_node(tree, "ShaderNodeSeparateXYZ")
-    h.link(tree, h.vector_math(tree, "NORMALIZE", direction.outputs[0]).outputs[0], axes.inputs[0])
-    height = h.math(tree, "MAXIMUM", axes.outputs["Z"], 0.0, label="Sine of the Sun's Elevation")
-    light = h.add_node(tree, "ShaderNodeCombineColor", label="Sun Strength × Colour (driven)")
     drivers.follow_lamp_light(light.inputs[:3], sun)
     sky = sky_eevee.sky_irradiance(tree, height.outputs[0])
     level = h.vector_math(tree, "MULTIPLY_ADD", light.outputs[0], (0.0, 0.0, 0.0), c=sky,
@@ -131,7 +123,8 @@ def _ambient(tree, sun, ground, base, thickness):
 def eevee_output(tree, density, scattering, scene, sun, base, thickness):
     """The material's EEVEE output for a baked grid: density socket -> a share T scattering
     (scattering(tree, density socket) -> volume socket), the rest absorbing and emitting the
-    lighting world's mean radiance. With the scene's Volume Shadows on, T is 1."""
+    ambient light (_ambient) of the layer between base and base + thickness. With the scene's
+    Volume Shadows on, T is 1."""
     attribute = h.add_node(tree, "ShaderNodeAttribute", attribute_type="GEOMETRY", attribute_name=GRID,
                            label="Sun's Light Let Through")
     switch = h.add_node(tree, "ShaderNodeValue", name=SHADOWS_SWITCH, label="EEVEE Shadows On (driven)")

@@ -96,16 +96,28 @@ def build(tree, ray, shown):
     h.link(tree, mix.outputs[0], output.inputs["Surface"])
 
 
-def _level_light(tree):
-    """(sky, ground): colour sockets of the sky's irradiance on level sand and of the lit sand's
-    radiance times pi (its colour times the sun's and the sky's irradiance on it)."""
-    sun = h.add_node(tree, "ShaderNodeCombineXYZ", name=SUN, label="Sun Direction (driven)")
+def sun_nodes(tree, direction_name, light_name=None, lowest=0.0, with_light=True):
+    """The lamp's direction (a Combine XYZ for the caller to drive: drivers.follow_lamp_axis),
+    normalised, the sine of its elevation (at least `lowest`) and, with_light, a Combine Color
+    for its light (drivers.follow_lamp_light): (direction node, unit socket, sine node, light
+    node or None). Any node tree: the world's, a material's, geometry nodes'."""
+    sun = h.add_node(tree, "ShaderNodeCombineXYZ", name=direction_name, label="Sun Direction (driven)")
     sun_unit = h.add_node(tree, "ShaderNodeVectorMath", operation="NORMALIZE")
     h.link(tree, sun.outputs[0], sun_unit.inputs[0])
     sun_axes = h.add_node(tree, "ShaderNodeSeparateXYZ")
     h.link(tree, sun_unit.outputs[0], sun_axes.inputs[0])
-    height = h.math(tree, "MAXIMUM", sun_axes.outputs["Z"], 0.0, label="Sine of the Sun's Elevation")
-    light = h.add_node(tree, "ShaderNodeCombineColor", name=SUN_LIGHT, label="Sun Strength × Colour (driven)")
+    height = h.math(tree, "MAXIMUM", sun_axes.outputs["Z"], lowest, label="Sine of the Sun's Elevation")
+    light = None
+    if with_light:
+        light = h.add_node(tree, "ShaderNodeCombineColor", name=light_name,
+                           label="Sun Strength × Colour (driven)")
+    return sun, sun_unit.outputs[0], height, light
+
+
+def _level_light(tree):
+    """(sky, ground): colour sockets of the sky's irradiance on level sand and of the lit sand's
+    radiance times pi (its colour times the sun's and the sky's irradiance on it)."""
+    _sun, sun_unit, height, light = sun_nodes(tree, SUN, SUN_LIGHT)
     direct = h.add_node(tree, "ShaderNodeVectorMath", operation="SCALE", label="Sun on Level Sand")
     h.link(tree, light.outputs[0], direct.inputs[0])
     h.link(tree, height.outputs[0], direct.inputs["Scale"])
@@ -120,7 +132,7 @@ def _level_light(tree):
     ground = h.add_node(tree, "ShaderNodeVectorMath", operation="MULTIPLY", label="Ground Radiance × π")
     h.link(tree, level.outputs[0], ground.inputs[0])
     h.link(tree, color.outputs[0], ground.inputs[1])
-    return sky, ground.outputs[0], sun_unit.outputs[0], light.outputs[0]
+    return sky, ground.outputs[0], sun_unit, light.outputs[0]
 
 
 def _with_disc(tree, view, sun, light, shown):

@@ -13,6 +13,7 @@ from devtools import readback, scenes, session
 
 clouds = importlib.import_module(f"{session.MODULE}.addon.clouds")
 cloud_sunlight = importlib.import_module(f"{session.MODULE}.addon.cloud_sunlight")
+sun_lamp = importlib.import_module(f"{session.MODULE}.addon.sun_lamp")
 
 MARCH_TOLERANCE = 1e-3  # float32 sums of up to 48 steps against float64
 SMALL = {"reach": 3000.0, "voxel": 150.0, "map_scale": 2000.0, "shape_scale": 600.0, "coverage": 0.6}
@@ -21,7 +22,7 @@ SMALL = {"reach": 3000.0, "voxel": 150.0, "map_scale": 2000.0, "shape_scale": 60
 def _sun(elevation, azimuth):
     lamp = bpy.data.objects.new("Artist Sun", bpy.data.lights.new("Artist Sun", "SUN"))
     bpy.context.scene.collection.objects.link(lamp)
-    lamp.rotation_euler = (math.pi / 2 - math.radians(elevation), 0.0, math.pi - math.radians(azimuth))
+    lamp.rotation_euler = sun_lamp.sun_rotation(math.radians(elevation), math.radians(azimuth))
     return lamp
 
 
@@ -70,7 +71,7 @@ def test_the_baked_light_follows_a_turned_sun(sandscape):
     """The lamp's axis drives the march: turned by hand, the grid is the twin's for the new sun."""
     scene, layer, lamp = _layer_with_sun(25.0, 140.0)
     before, _, _ = _baked_and_twin(scene, layer, lamp)
-    lamp.rotation_euler = (math.pi / 2 - math.radians(40.0), 0.0, math.pi - math.radians(300.0))
+    lamp.rotation_euler = sun_lamp.sun_rotation(math.radians(40.0), math.radians(300.0))
     bpy.context.view_layer.update()
     after, expected, cloudiness = _baked_and_twin(scene, layer, lamp)
     s = clouds.scene_settings(scene)
