@@ -137,3 +137,25 @@ def test_the_sunlights_drivers_run_without_python(sandscape):
     found = [curve.driver for tree in trees for curve in tree.animation_data.drivers]
     assert len(found) >= 7  # the sun's axis in both trees, its light, the shadows' switch
     assert all(driver.is_simple_expression for driver in found)
+
+
+def test_a_centimetre_scene_bakes_the_same_light(sandscape):
+    """Unit scale 0.01, every length in scene units a hundred times the metre scene's: the same
+    light let through at the same voxels."""
+    scene, layer, lamp = _layer_with_sun(25.0, 140.0)
+    metres, _, _ = _baked_and_twin(scene, layer, lamp)
+    bpy.ops.wm.read_homefile(use_empty=True)
+    scene = bpy.context.scene
+    scene.unit_settings.scale_length = 0.01
+    scenes.camera("PERSP", location=(2e4, -3e4, 200.0), rotation=(math.radians(80.0), 0.0, 0.4))
+    scene.camera.data.clip_end = 1e7
+    lamp = _sun(25.0, 140.0)
+    scene.render.engine = "BLENDER_EEVEE"
+    lengths = ("reach", "voxel", "map_scale", "shape_scale")
+    assert bpy.ops.sandscape.add_clouds(**{k: v * 100.0 if k in lengths else v for k, v in SMALL.items()}) \
+        == {"FINISHED"}
+    layer = next(o for o in scene.objects if o.get("sandscape_object") == "clouds")
+    centimetres, _, _ = _baked_and_twin(scene, layer, lamp)
+    assert centimetres.shape == metres.shape
+    print(f"centimetres against metres: largest difference {np.abs(centimetres - metres).max():.1e}")
+    assert np.abs(centimetres - metres).max() <= MARCH_TOLERANCE
