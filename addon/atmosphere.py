@@ -26,6 +26,7 @@ from . import (
     shot,
     sky_eevee,
     sky_eevee_clouds,
+    sky_eevee_ground,
     sky_eevee_haze,
     units,
     walker_wind,
@@ -366,13 +367,13 @@ def apply(scene, settings):
     sky_eevee.follow_sun(world, sun)
     sky_eevee.follow_clamp(world, scene)
     sky_eevee_clouds.follow_scene(scene)
-    if sky_eevee.followed_sand(world) is None:  # sand added before the sky: the ground takes its colour
-        sky_eevee.follow_sand(world, next(filter(None, map(sand.find_sand_material, scene.objects)), None))
+    ground, ground_read = sky_eevee_ground.refresh(scene)  # the sand, else the artist's ground
     haze_shell, _ = refresh_far_haze(scene)  # hollowed round the box as it is now
     # Volume sampling, like the exposure, is the artist's: the quality presets set it.
     return {"sun": sun, "followed": followed, "elevation": elevation, "azimuth": azimuth, "world": world,
             "volume": box, "coefficients": per_metre, "exposure": exposure, "changes": changes,
-            "far_haze": haze_shell}
+            "far_haze": haze_shell,
+            "ground": ground, "ground_read": ground_read}
 
 
 def clip_warning(scene, box):

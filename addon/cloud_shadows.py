@@ -13,7 +13,7 @@ import numpy as np
 from ..core import atmosphere as air_twin
 from ..core import cloud_shadows as twin
 from ..node_groups import helper as h
-from . import cloud_grid, cloud_sunlight
+from . import cloud_grid, cloud_sunlight, sky_eevee_ground
 from . import ownership as own
 from .shot import frames_per_second
 from .sun_lamp import scene_sun, sun_angles
@@ -46,6 +46,7 @@ def caster(scene):
 
 
 def remove(scene):
+    sky_eevee_ground.set_sun_let_through(scene, 1.0)
     found = caster(scene)
     if found is None:
         return
@@ -139,4 +140,5 @@ def apply(scene, box, base, thickness, step, density_at, wind):
     _build_material(found)
     cloud_grid.drift_with_wind(found, wind, frames_per_second(scene))
     found["sandscape_sun_direction"] = [float(v) for v in direction]  # what the map was made for
+    sky_eevee_ground.set_sun_let_through(scene, float(light.mean()))
     return {"object": found, "texels": light.shape}

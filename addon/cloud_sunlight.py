@@ -11,7 +11,7 @@ renders with EEVEE when Add Clouds runs: a Cycles render would evaluate the marc
 The material's EEVEE output then splits the extinction: a share T scatters as in Cycles (EEVEE
 lights it with the sun and the world), the rest absorbs and, in place of the world's light it
 would have scattered, emits seed 001's ambient term from EEVEE's lighting world's two
-hemispheres (addon/sky_eevee.py): the lit sand's light below at the cloud's base, the sky's
+hemispheres (addon/sky_eevee.py): the lit ground's light below at the cloud's base, the sky's
 above at its top. That is single scattering with the sun's light let through exactly (EEVEE
 clamps a volume's emission at zero, so the sun's light cannot be taken away from a scatterer).
 With EEVEE's Volume Shadows on (the artist's), a driver sets T to 1: EEVEE shades the clouds
@@ -21,9 +21,9 @@ itself, as before, not twice.
 import math
 
 from ..core import cloud_shadows as shadow_twin
-from ..core import sand as core_sand
 from ..node_groups import helper as h
-from . import drivers, sky_eevee
+from . import drivers, sky_eevee, sky_eevee_ground
+from . import ownership as own
 
 GRID = "sun_transmittance"
 SUN_DIRECTION = "Sandscape Cloud Sun Direction"
@@ -84,13 +84,14 @@ def baked(layer):
     return tree is not None and SUN_DIRECTION in tree.nodes
 
 
-def _ground_colour(scene):
-    """The colour EEVEE's lighting world gives the ground (the sand last added), else the sand's."""
-    tree = scene.world.node_tree if scene.world is not None and scene.world.node_tree else None
-    node = tree.nodes.get(sky_eevee.GROUND_COLOR) if tree is not None else None
-    if node is None:
-        return tuple(core_sand.SAND_COLOR[:3])
-    return tuple(float(node.inputs[index].default_value) for index in range(3))
+def _ground_colour(tree, scene):
+    """Colour socket: the ground's colour as the world's light from below takes it (the same
+    material followed: sky_eevee_ground.py), else the sand's."""
+    node = h.add_node(tree, "ShaderNodeCombineColor", name=sky_eevee_ground.NODE,
+                      label="Ground Colour (driven)")
+    world = own.scene_world(scene)
+    sky_eevee_ground.drive(node, sky_eevee_ground.followed(world.node_tree) if world is not None else None)
+    return node.outputs[0]
 
 
 def _ambient(tree, sun, ground, base, thickness):
@@ -105,7 +106,9 @@ def _ambient(tree, sun, ground, base, thickness):
     sky = sky_eevee.sky_irradiance(tree, height.outputs[0])
     level = h.vector_math(tree, "MULTIPLY_ADD", light.outputs[0], (0.0, 0.0, 0.0), c=sky,
                           label="Light on Level Sand")
-    h.link(tree, height.outputs[0], level.inputs[1])
+    mean = sky_eevee_ground.sun_let_through_node(tree)  # the clouds' shadows on the ground, on the whole
+    shaded = h.math(tree, "MULTIPLY", height.outputs[0], mean.outputs[0], label="Sine × Sun Let Through")
+    h.link(tree, shaded.outputs[0], level.inputs[1])
     below = h.vector_math(tree, "MULTIPLY", level.outputs[0], ground, label="Lit Sand × π")
     where = h.add_node(tree, "ShaderNodeSeparateXYZ")
     h.link(tree, h.position(tree).outputs["Position"], where.inputs[0])
@@ -136,7 +139,7 @@ def eevee_output(tree, density, scattering, scene, sun, base, thickness):
     absorbed = h.add_node(tree, "ShaderNodeVolumeAbsorption", inputs={"Color": (0.0, 0.0, 0.0, 1.0)})
     h.link(tree, unlit.outputs[0], absorbed.inputs["Density"])
     glow = h.add_node(tree, "ShaderNodeEmission", label="The World's Light")
-    h.link(tree, _ambient(tree, sun, _ground_colour(scene), base, thickness), glow.inputs["Color"])
+    h.link(tree, _ambient(tree, sun, _ground_colour(tree, scene), base, thickness), glow.inputs["Color"])
     h.link(tree, unlit.outputs[0], glow.inputs["Strength"])
     first = h.add_node(tree, "ShaderNodeAddShader")
     h.link(tree, scattering(tree, lit.outputs[0]), first.inputs[0])

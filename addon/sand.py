@@ -24,7 +24,7 @@ from ..node_groups import (
     sand_normal,
 )
 from ..node_groups import helper as h
-from . import evaluation, print_lookup, sand_eevee, sky_eevee, sparkle_footprint, units
+from . import evaluation, print_lookup, sand_eevee, sky_eevee_ground, sparkle_footprint, units
 from . import ownership as own
 
 SAND_COLOR = core_sand.SAND_COLOR
@@ -213,7 +213,7 @@ def update_material(material, values, image=None, look="PHYSICAL", glint_mode="L
     trample_ripples(material)
     scene = scene if scene is not None else bpy.context.scene
     sand_eevee.attach(material, scene, look_node(material), look, node)
-    sky_eevee.follow_sand(own.scene_world(scene), material)  # the lit sand EEVEE's world bounces
+    sky_eevee_ground.refresh(scene, material)  # the lit sand EEVEE's world and clouds bounce
     return node
 
 

@@ -16,7 +16,8 @@ Cycles (EEVEE bounces none without a baked probe).
 
 Both follow the scene's sun lamp through simple-expression drivers (its axis, strength and
 colour), with the sky's irradiance at that elevation from core/sun_table.py in an RGB Curves
-node, and the ground takes the colour of the sand last added or updated: no Python on a farm.
+node, and the ground takes the colour of the scene's ground (sky_eevee_ground.py): no Python on
+a farm.
 """
 
 import math
@@ -24,16 +25,15 @@ import math
 import numpy as np
 
 from ..core import atmosphere as air
-from ..core import sand as core_sand
 from ..core import sun as sky_sun
 from ..node_groups import helper as h
-from . import compat, drivers, sky_eevee_clouds, sky_eevee_haze
+from . import compat, drivers, sky_eevee_clouds, sky_eevee_ground, sky_eevee_haze
 from . import ownership as own
 from .sun_lamp import SKY_SUN_SIZE
 
 OUTPUT = "Sandscape EEVEE World Output"
 SUN, SUN_LIGHT = "Sandscape EEVEE Ground Sun", "Sandscape EEVEE Ground Sun Light"
-SKY_LIGHT, GROUND_COLOR = "Sandscape EEVEE Ground Sky Light", "Sandscape EEVEE Ground Colour"
+SKY_LIGHT, GROUND_COLOR = "Sandscape EEVEE Ground Sky Light", sky_eevee_ground.NODE
 CLAMP = "Sandscape EEVEE Clamp"
 CLAMP_EXPRESSION = "limit if limit > 0 else 1e9"  # 0: EEVEE clamps nothing
 DISC, DISC_EDGE = "Sandscape EEVEE Sun Disc", "Sandscape EEVEE Sun Disc Edge"
@@ -41,7 +41,6 @@ DISC_EDGE_EXPRESSION = "angle / 2"
 DISC_STRENGTH_EXPRESSION = "1 / (2 * pi * max(1 - cos(angle / 2), 1e-12))"  # core.sun.disc_solid_angle
 # Their values without a lamp: the sky's own disc.
 DISC_EDGE_DEFAULT, DISC_STRENGTH_DEFAULT = 0.5 * SKY_SUN_SIZE, 1.0 / sky_sun.disc_solid_angle(SKY_SUN_SIZE)
-LOOK = "Sandscape Look"  # the sand material's look node (addon/sand.py), whose Color the ground takes
 
 
 def build(tree, ray, shown):
@@ -123,7 +122,7 @@ def _level_light(tree):
     h.link(tree, height.outputs[0], direct.inputs["Scale"])
     # Combine Color: a driver on each channel's input, as for the sun's light.
     color = h.add_node(tree, "ShaderNodeCombineColor", name=GROUND_COLOR, label="Ground Colour")
-    set_ground_colour(color, core_sand.SAND_COLOR)
+    sky_eevee_ground.drive(color, None)
     clear = sky_irradiance(tree, height.outputs[0])
     sky = sky_eevee_clouds.build(tree, height.outputs[0], light.outputs[0], clear, color.outputs[0])
     level = h.add_node(tree, "ShaderNodeVectorMath", operation="ADD", label="Light on Level Sand")
@@ -232,28 +231,6 @@ def followed_sun(world):
     return _driven_by(world, SUN)
 
 
-def set_ground_colour(node, colour):
-    """The ground's colour fixed (its drivers removed)."""
-    for index in range(3):
-        node.inputs[index].driver_remove("default_value")
-        node.inputs[index].default_value = colour[index]
-
-
-def follow_sand(world, material):
-    """Drive the ground's colour from this sand material's look (its Color); the default sand's
-    where there is none or its colour is linked (a texture the world cannot read)."""
-    node = own.node(world.node_tree if world is not None else None, GROUND_COLOR)
-    if node is None:
-        return
-    look = material.node_tree.nodes.get(LOOK) if material is not None and material.node_tree else None
-    if look is None or "Color" not in look.inputs or look.inputs["Color"].is_linked:
-        set_ground_colour(node, core_sand.SAND_COLOR)
-        return
-    for index in range(3):
-        path = f'node_tree.nodes["{LOOK}"].inputs["Color"].default_value[{index}]'
-        drivers.drive(node.inputs[index], "default_value", "colour", [("colour", "MATERIAL", material, path)])
-
-
-def followed_sand(world):
-    """The sand material whose colour the ground takes, or None."""
+def followed_ground(world):
+    """The material whose colour the ground takes, or None."""
     return _driven_by(world, GROUND_COLOR)

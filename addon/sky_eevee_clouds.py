@@ -26,7 +26,7 @@ SHOWN = "Sandscape EEVEE Cloud Layer Shown"
 def build(tree, sine, sun_light, sky, ground):
     """A colour socket: the sky's light on level sand (sky) with the clouds' change; no change
     until follow() sets it. sine: the sine of the sun's elevation (0 below the horizon); ground:
-    the sand's colour."""
+    the ground's colour."""
     grey = h.add_node(tree, "ShaderNodeCombineColor")
     for index in range(3):
         h.link(tree, sine, grey.inputs[index])

@@ -57,8 +57,21 @@ def report_line(scene, settings, done):
             scene.eevee.clamp_surface_indirect > 0:
         parts.append(f"EEVEE's Clamp Surface Indirect kept at {scene.eevee.clamp_surface_indirect:g} "
                      "(it dims the sand's bounce light; the EEVEE presets set 0)")
+    if (ground := ground_part(done)) is not None:
+        parts.append(ground)
     changed = "; changed: " + "; ".join(done["changes"]) if done["changes"] else ""
     return ", ".join(parts) + changed
+
+
+def ground_part(done):
+    """Whose colour EEVEE's light from the ground takes, when it is not our sand; or None."""
+    ground = done.get("ground")
+    if done["world"] is None or ground is None or ground.get(ownership.MATERIAL_KEY) == ownership.SAND:
+        return None
+    if done["ground_read"]:
+        return f"EEVEE's light from the ground takes the colour of your '{ground.name}'"
+    return (f"EEVEE's light from the ground takes the sand's colour: your '{ground.name}' gets its colour "
+            "from a texture or a shader it cannot read")
 
 
 class SANDSCAPE_OT_add_atmosphere(SandscapeOperator, bpy.types.Operator):

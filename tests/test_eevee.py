@@ -392,8 +392,8 @@ def test_the_lit_sand_lights_a_wall_in_eevee_as_in_cycles(eevee_scene, sandscape
         return readback.render(eevee_scene)[..., :3].astype(np.float64).mean((0, 1))
 
     cycles, eevee = mean("CYCLES"), mean("BLENDER_EEVEE")
-    sky_eevee = sandscape.addon.sky_eevee
-    sky_eevee.set_ground_colour(eevee_scene.world.node_tree.nodes[sky_eevee.GROUND_COLOR], (0.0, 0.0, 0.0))
+    ground = sandscape.addon.sky_eevee_ground
+    ground.set_colour(eevee_scene.world.node_tree.nodes[ground.NODE], (0.0, 0.0, 0.0))
     bare = mean("BLENDER_EEVEE")
     print(f"wall under a {elevation:g}° sun: Cycles {cycles.round(4)}, EEVEE {eevee.round(4)} "
           f"({(eevee / cycles - 1).round(3)}), without the ground's light {bare.round(4)} "

@@ -83,7 +83,9 @@ def test_eevees_lighting_world_holds_the_twins_cloud_light(sandscape, degrees, c
     cloudy = _irradiance(scene)
     sun = lamp.data.energy * np.array(lamp.data.color)
     sine = lamp.matrix_world.col[2].normalized().z
-    twin = cloud_light.level_change(math.asin(sine), coverage, depth, sun, clear)
+    ground = scene.world.node_tree.nodes[sandscape.addon.sky_eevee_ground.NODE]  # the white plane's
+    twin = cloud_light.level_change(math.asin(sine), coverage, depth, sun, clear,
+                                    [ground.inputs[i].default_value for i in range(3)])
     print(f"clouds' light at {degrees:g}°, coverage {coverage}: world {np.round(cloudy - clear, 3)}, "
           f"twin {np.round(twin, 3)}, clear sky {np.round(clear, 3)}")
     assert np.abs(cloudy - clear - twin).max() < NODES_TOLERANCE * clear.max()

@@ -70,7 +70,7 @@ def test_the_ground_light_takes_the_sands_colour(sandscape, sand_first):
     for step in steps if sand_first else steps[::-1]:
         assert step() == {"FINISHED"}
     material = sandscape.addon.sand.find_sand_material(bpy.context.active_object)
-    assert module.followed_sand(scene.world) == material
+    assert module.followed_ground(scene.world) == material
     look = sandscape.addon.sand.look_node(material)
     look.inputs["Color"].default_value = (0.8, 0.3, 0.1, 1.0)
     scene.frame_set(scene.frame_current)

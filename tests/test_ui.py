@@ -247,6 +247,10 @@ def test_the_sidebar_says_which_engine_a_setting_reaches(sandscape):
     layout = RecordingLayout()
     bpy.types.SANDSCAPE_PT_clouds.draw(types.SimpleNamespace(layout=layout), bpy.context)
     assert ("label", panels.CLOUD_SHADOWS_IN_EEVEE) in [c[:2] for c in layout.calls]
+    assert bpy.ops.sandscape.add_atmosphere() == {"FINISHED"}
+    layout = RecordingLayout()
+    bpy.types.SANDSCAPE_PT_atmosphere.draw(types.SimpleNamespace(layout=layout), bpy.context)
+    assert ("label", panels.ground_light_text(bpy.context.scene)) in [c[:2] for c in layout.calls]
     bpy.context.scene.render.engine = "CYCLES"
     readback.uv_plane()
     for look in ("PHYSICAL", "JOURNEY"):

@@ -4,7 +4,7 @@ poll() allows."""
 
 import bpy
 
-from ..addon import atmosphere, cloud_shadows, dunes, rig_feet, sand, sand_eevee
+from ..addon import atmosphere, cloud_shadows, dunes, ownership, rig_feet, sand, sand_eevee, sky_eevee
 
 
 class SandscapeTab:
@@ -174,6 +174,9 @@ class SANDSCAPE_PT_atmosphere(SandscapeSubPanel, bpy.types.Panel):
         # Where the user sees it: why the dust is a box and not a world volume.
         layout.label(text="Dust fills a box around what the camera sees:", icon="INFO")
         layout.label(text="a world volume would block the sun lamp")
+        scene = context.scene
+        if scene.render.engine == "BLENDER_EEVEE" and ownership.scene_world(scene) is not None:
+            layout.label(text=ground_light_text(scene), icon="INFO")
         layout.operator("sandscape.add_atmosphere", icon="LIGHT_SUN")
         _sections(layout, context.scene.sandscape_post, POST_SECTIONS)
         engine = context.scene.render.engine
@@ -231,6 +234,14 @@ class SANDSCAPE_PT_render(SandscapeSubPanel, bpy.types.Panel):
         row = layout.row(align=True)
         row.operator("sandscape.optimize_scene", text="List", icon="VIEWZOOM").dry_run = True
         row.operator("sandscape.optimize_scene", text="Optimize", icon="MODIFIER").dry_run = False
+
+
+def ground_light_text(scene):
+    """Whose colour EEVEE's light from the ground takes (addon/sky_eevee_ground.py)."""
+    followed = sky_eevee.followed_ground(scene.world)
+    if followed is None:
+        return "EEVEE's light from the ground: the sand's colour"
+    return f"EEVEE's light from the ground: the colour of '{followed.name}'"
 
 
 CLOUD_SHADOWS_IN_EEVEE = "EEVEE: the clouds' ground shadows from Add Clouds"

@@ -1,0 +1,167 @@
+"""The ground's colour in EEVEE's light from below: the lighting world's lower hemisphere and
+the clouds' light at their base (cloud_sunlight.py) take the colour of the scene's ground.
+
+Cycles bounces the light off whatever ground there is; EEVEE bounces none without a baked
+probe, so the world stands in for the lit ground, and with the sand's colour over an artist's
+olive grass it lit the clouds' bases and the walker's legs too warm. The ground is the
+Sandscape sand last added or updated; in a scene without it, the surface below the camera
+(straight down, else along its view): its shader's colour (a Principled BSDF's Base Color, a
+Diffuse BSDF's Color). Each follows that colour through simple-expression drivers, so an
+artist's later change to it carries to both, with no Python on a farm. A colour from a texture
+cannot be read by a driver: the sand's colour stands in, and the operator says so.
+
+Under the clouds' bases the lit ground's light is the lamp's let through the layer plus the
+sky's: the share let through is the mean of EEVEE's cloud-shadow map (cloud_shadows.py), set
+when it is made (with the lamp's whole light the ground under broken cloud lit the bases too
+brightly). The world's lower hemisphere keeps the lamp's whole light: it stands for the ground
+round what it lights, a walker in the sun, and one mean over the layer darkened the demo's
+walker further (README).
+"""
+
+from mathutils import Vector
+
+from ..core import sand as core_sand
+from ..node_groups import helper as h
+from . import drivers, evaluation
+from . import ownership as own
+
+NODE = "Sandscape EEVEE Ground Colour"  # a Combine Color in the world and in each cloud material
+LOOK = "Sandscape Look"  # the sand material's look node (addon/sand.py), whose Color the ground takes
+SHADER_COLOUR = {"ShaderNodeBsdfPrincipled": "Base Color", "ShaderNodeBsdfDiffuse": "Color"}
+SUN_LET_THROUGH = "Sandscape EEVEE Ground Sun Let Through"  # a Value node beside each NODE
+HITS = 8  # surfaces passed through looking for the ground (volume boxes, glass)
+
+
+def colour_input(material):
+    """(node, input name) giving the material's surface its colour, or None: our sand's look,
+    else the shader on the EEVEE output's Surface."""
+    tree = material.node_tree if material is not None else None
+    if tree is None:
+        return None
+    if material.get(own.MATERIAL_KEY) == own.SAND:
+        look = tree.nodes.get(LOOK)
+        return (look, "Color") if look is not None and "Color" in look.inputs else None
+    output = tree.get_output_node("EEVEE")
+    surface = output.inputs["Surface"] if output is not None else None
+    if surface is None or not surface.is_linked:
+        return None
+    shader = surface.links[0].from_node
+    name = SHADER_COLOUR.get(shader.bl_idname)
+    return (shader, name) if name is not None else None
+
+
+def _surface_material(scene, origin, direction):
+    """The material first met from origin along direction on a surface that is not ours (the
+    dust box, the clouds, the haze are volumes in mesh boxes), else None."""
+    depsgraph = evaluation.scene_depsgraph(scene)
+    for _ in range(HITS):
+        hit, location, _normal, index, obj, _matrix = scene.ray_cast(depsgraph, origin, direction)
+        if not hit:
+            return None
+        original = obj.original
+        mesh = obj.data if obj.type == "MESH" else None
+        if original.get(own.OBJECT_KEY) is None or original.get(own.OBJECT_KEY) in own.SCENERY:
+            inside = mesh is not None and 0 <= index < len(mesh.polygons)
+            slot = mesh.polygons[index].material_index if inside else 0
+            slots = original.material_slots
+            material = slots[slot].material if slot < len(slots) else None
+            if material is not None and material.get(own.MATERIAL_KEY) not in (own.DUST, own.CLOUD_MATERIAL):
+                return material
+        origin = location + direction * 1e-4 * max(1.0, location.length)
+    return None
+
+
+def ground_material(scene, followed=None):
+    """The material whose colour the ground takes: the followed sand while the scene still shows
+    it, else a Sandscape sand in the scene, else the surface below (or ahead of) the camera."""
+    sands = [own.slot_material(obj, own.SAND) for obj in scene.objects]
+    sands = [material for material in sands if material is not None]
+    if followed is not None and followed in sands:
+        return followed
+    if sands:
+        return sands[0]
+    camera = scene.camera
+    if camera is None:
+        return None
+    matrix = evaluation.world_matrix(scene, camera)
+    origin = matrix.translation
+    for direction in (Vector((0.0, 0.0, -1.0)), -(matrix.to_3x3() @ Vector((0.0, 0.0, 1.0))).normalized()):
+        material = _surface_material(scene, origin, direction)
+        if material is not None:
+            return material
+    return None
+
+
+def set_colour(node, colour):
+    """The Combine Color node's colour fixed (its drivers removed)."""
+    for index in range(3):
+        node.inputs[index].driver_remove("default_value")
+        node.inputs[index].default_value = colour[index]
+
+
+def drive(node, material):
+    """Drive the Combine Color node's channels from the material's colour input; the sand's fixed
+    colour where there is none or it is linked (a texture). Whether it follows the material."""
+    found = colour_input(material)
+    if found is None or found[0].inputs[found[1]].is_linked:
+        set_colour(node, core_sand.SAND_COLOR)
+        return False
+    shader, name = found
+    for index in range(3):
+        path = f'node_tree.nodes["{shader.name}"].inputs["{name}"].default_value[{index}]'
+        drivers.drive(node.inputs[index], "default_value", "colour", [("colour", "MATERIAL", material, path)])
+    return True
+
+
+def followed(tree):
+    """The material the tree's ground colour follows, or None."""
+    node = own.node(tree, NODE)
+    if node is None or tree.animation_data is None:
+        return None
+    path = f'nodes["{NODE}"].inputs[0].default_value'
+    driver = next((c.driver for c in tree.animation_data.drivers if c.data_path == path), None)
+    return driver.variables[0].targets[0].id if driver is not None and driver.variables else None
+
+
+def _trees(scene):
+    """The world's tree (ours) and our cloud materials' trees in the scene."""
+    world = own.scene_world(scene)
+    trees = [world.node_tree] if world is not None and world.node_tree is not None else []
+    for obj in own.scene_objects(scene, own.CLOUDS):
+        material = own.slot_material(obj, own.CLOUD_MATERIAL)
+        if material is not None and material.node_tree is not None and material.node_tree not in trees:
+            trees.append(material.node_tree)
+    return trees
+
+
+def sun_let_through_node(tree):
+    """A Value node, 1 until set_sun_let_through: the share of the lamp's light that reaches the
+    ground under the cloud layer, on the whole."""
+    node = h.add_node(tree, "ShaderNodeValue", name=SUN_LET_THROUGH,
+                      label="Sun Let Through to the Ground (mean)")
+    node.outputs[0].default_value = 1.0
+    return node
+
+
+def set_sun_let_through(scene, share):
+    """The share of the lamp's light the cloud layer lets through to the ground, on the whole (the
+    mean of EEVEE's cloud-shadow map; 1 without one): the lit ground's light the clouds' bases
+    take from below. Cycles shadows the ground through the clouds themselves."""
+    for tree in _trees(scene):  # the world has none: see the module's docstring
+        node = own.node(tree, SUN_LET_THROUGH)
+        if node is not None:
+            node.outputs[0].default_value = float(share)
+
+
+def refresh(scene, material=None):
+    """Point every ground colour in the scene (the world's, the clouds') at the ground: the given
+    sand material, else ground_material(). The material followed, and whether its colour could be
+    read (False: a texture, or no ground found; the sand's colour stands in)."""
+    trees = [tree for tree in _trees(scene) if own.node(tree, NODE) is not None]
+    if material is None:
+        world = own.scene_world(scene)
+        material = ground_material(scene, followed(world.node_tree) if world is not None else None)
+    read = True
+    for tree in trees:
+        read = drive(own.node(tree, NODE), material)
+    return material, read and material is not None
