@@ -53,10 +53,8 @@ def parameters(scene, s):
 def coverage_function(s, image):
     """Coverage at ground points xy (..., 2), at frame 0: the procedural map's twin or the image."""
     if s["weather_source"] == "IMAGE":
-        width, height = image.size
-        pixels = np.empty(width * height * 4, np.float32)
-        image.pixels.foreach_get(pixels)
-        red = pixels.reshape(height, width, 4)[..., 0]
+        red = sky_eevee_clouds.weather_red(image)
+        height, width = red.shape
 
         def from_image(xy):
             uv = xy / s["map_size"] + 0.5

@@ -107,14 +107,21 @@ def held(world):
             for d, g, b in zip(*points, strict=True)]
 
 
+def weather_red(image):
+    """A painted weather map's red channel, its coverage: (rows = y, columns = x)."""
+    width, height = image.size
+    pixels = np.empty(width * height * 4, np.float32)
+    image.pixels.foreach_get(pixels)
+    return pixels.reshape(height, width, 4)[..., 0]
+
+
 def layer_coverage(stored):
     """The layer's coverage: the setting, or a painted map's mean red."""
     image = stored.weather_image if stored.weather_source == "IMAGE" else None
     if image is None:
         return float(stored.coverage)
-    pixels = np.empty(image.size[0] * image.size[1] * 4, np.float32)
-    image.pixels.foreach_get(pixels)
-    return float(np.clip(pixels[0::4].mean(), 0.0, 1.0)) if pixels.size else 0.0
+    red = weather_red(image)
+    return float(np.clip(red.mean(), 0.0, 1.0)) if red.size else 0.0
 
 
 def follow_scene(scene):
