@@ -213,7 +213,7 @@ def update_material(material, values, image=None, look="PHYSICAL", glint_mode="L
     trample_ripples(material)
     scene = scene if scene is not None else bpy.context.scene
     sand_eevee.attach(material, scene, look_node(material), look, node)
-    sky_eevee_ground.refresh(scene, material)  # the lit sand EEVEE's world and clouds bounce
+    sky_eevee_ground.refresh(scene)  # the lit sand EEVEE's world and clouds bounce, if it is the ground
     return node
 
 

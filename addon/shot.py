@@ -3,9 +3,13 @@ fitted to."""
 
 import numpy as np
 
-from . import evaluation
+from . import evaluation, units
 
 FRAME_SAMPLES = 16  # camera positions sampled over the frame range
+# Clip End over Clip Start past which EEVEE's picture breaks down: a helper's view rendered alike
+# at 1:10^6 and 1:10^7 and brighter, its haze and clouds blocky, at 1:10^8 (whether 1 mm to 100 km
+# or 1 cm to 1000 km: the ratio, not the units; README). Between the two.
+MOST_DEPTH_RATIO, SAFE_DEPTH_RATIO = 2e7, 1e7
 
 
 def frames_per_second(scene):
@@ -17,6 +21,21 @@ def scene_camera(scene):
     camera), else None."""
     camera = scene.camera
     return camera if camera is not None and camera.type == "CAMERA" else None
+
+
+def eevee_depth_warning(scene):
+    """Why an EEVEE render of the scene's camera breaks down, and what to change; or None."""
+    camera = scene_camera(scene)
+    if scene.render.engine != "BLENDER_EEVEE" or camera is None:
+        return None
+    start, end = camera.data.clip_start, camera.data.clip_end
+    if start <= 0 or end / start <= MOST_DEPTH_RATIO:
+        return None
+    ratio = float(f"{end / start:.2g}")  # 1 : 100,000,000, not 99,999,999 from a float's 0.1
+    return (f"Camera '{camera.name}' sees from {units.length_text(scene, start)} to "
+            f"{units.length_text(scene, end)} (Clip Start to Clip End, 1 : {ratio:,.0f}): past "
+            f"1 : {MOST_DEPTH_RATIO:,.0f} EEVEE renders the haze and clouds brighter and blocky. Raise its "
+            f"Clip Start (Camera ▸ Lens) to {units.length_text(scene, end / SAFE_DEPTH_RATIO)}")
 
 
 def camera_views(scene, camera):

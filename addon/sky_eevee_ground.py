@@ -3,12 +3,13 @@ the clouds' light at their base (cloud_sunlight.py) take the colour of the scene
 
 Cycles bounces the light off whatever ground there is; EEVEE bounces none without a baked
 probe, so the world stands in for the lit ground, and with the sand's colour over an artist's
-olive grass it lit the clouds' bases and the walker's legs too warm. The ground is the
-Sandscape sand last added or updated; in a scene without it, the surface below the camera
-(straight down, else along its view): its shader's colour (a Principled BSDF's Base Color, a
-Diffuse BSDF's Color). Each follows that colour through simple-expression drivers, so an
-artist's later change to it carries to both, with no Python on a farm. A colour from a texture
-cannot be read by a driver: the sand's colour stands in, and the operator says so.
+olive grass it lit the clouds' bases and the walker's legs too warm. The ground is the opaque
+surface below the camera (straight down, else along its view; what renders and is not ours),
+else the Sandscape sand last added or updated: its shader's colour (a Principled BSDF's Base
+Color, a Diffuse BSDF's Color, our sand's look's Color). Each follows that colour through
+simple-expression drivers, so an artist's later change to it carries to both, with no Python on
+a farm. A colour from a texture cannot be read by a driver: the sand's colour stands in, and
+the operator says so.
 
 Under the clouds' bases the lit ground's light is the lamp's let through the layer plus the
 sky's: the share let through is the mean of EEVEE's cloud-shadow map (cloud_shadows.py), set
@@ -28,6 +29,8 @@ from . import ownership as own
 NODE = "Sandscape EEVEE Ground Colour"  # a Combine Color in the world and in each cloud material
 LOOK = "Sandscape Look"  # the sand material's look node (addon/sand.py), whose Color the ground takes
 SHADER_COLOUR = {"ShaderNodeBsdfPrincipled": "Base Color", "ShaderNodeBsdfDiffuse": "Color"}
+SEE_THROUGH = {"ShaderNodeBsdfGlass", "ShaderNodeBsdfRefraction", "ShaderNodeBsdfTransparent",
+               "ShaderNodeHoldout"}
 SUN_LET_THROUGH = "Sandscape EEVEE Ground Sun Let Through"  # a Value node beside each NODE
 HITS = 8  # surfaces passed through looking for the ground (volume boxes, glass)
 
@@ -50,36 +53,54 @@ def colour_input(material):
     return (shader, name) if name is not None else None
 
 
+def see_through(material):
+    """Whether the material's surface lets the view through (glass, a transmissive or cut-out
+    Principled, a transparent shader): not a ground, whatever lies behind it."""
+    tree = material.node_tree
+    output = tree.get_output_node("EEVEE") if tree is not None else None
+    surface = output.inputs["Surface"] if output is not None else None
+    if surface is None or not surface.is_linked:
+        return False
+    shader = surface.links[0].from_node
+    if shader.bl_idname in SEE_THROUGH:
+        return True
+    if shader.bl_idname != "ShaderNodeBsdfPrincipled":
+        return False
+    transmission, alpha = shader.inputs["Transmission Weight"], shader.inputs["Alpha"]
+    return ((not transmission.is_linked and transmission.default_value >= 0.5)
+            or (not alpha.is_linked and alpha.default_value < 0.5))
+
+
 def _surface_material(scene, origin, direction):
-    """The material first met from origin along direction on a surface that is not ours (the
-    dust box, the clouds, the haze are volumes in mesh boxes), else None."""
+    """The material first met from origin along direction on an opaque surface that renders and
+    is not ours (the dust box, the clouds, the haze are volumes in mesh boxes; the walker stands
+    on the ground), else None."""
     depsgraph = evaluation.scene_depsgraph(scene)
     for _ in range(HITS):
         hit, location, _normal, index, obj, _matrix = scene.ray_cast(depsgraph, origin, direction)
         if not hit:
             return None
-        original = obj.original
-        mesh = obj.data if obj.type == "MESH" else None
-        if original.get(own.OBJECT_KEY) is None or original.get(own.OBJECT_KEY) in own.SCENERY:
-            inside = mesh is not None and 0 <= index < len(mesh.polygons)
-            slot = mesh.polygons[index].material_index if inside else 0
-            slots = original.material_slots
-            material = slots[slot].material if slot < len(slots) else None
-            if material is not None and material.get(own.MATERIAL_KEY) not in (own.DUST, own.CLOUD_MATERIAL):
-                return material
         origin = location + direction * 1e-4 * max(1.0, location.length)
+        original = obj.original
+        if original.hide_render or original.get(own.OBJECT_KEY) not in (None, *own.SCENERY):
+            continue
+        # The face index is the evaluated mesh's (a Subdivision modifier makes more of them).
+        evaluated = original.evaluated_get(depsgraph)
+        mesh = evaluated.data if evaluated.type == "MESH" else None
+        inside = mesh is not None and 0 <= index < len(mesh.polygons)
+        slot = mesh.polygons[index].material_index if inside else 0
+        slots = original.material_slots
+        material = slots[slot].material if slot < len(slots) else None
+        if material is None or material.get(own.MATERIAL_KEY) in (own.DUST, own.CLOUD_MATERIAL):
+            continue
+        if not see_through(material):
+            return material
     return None
 
 
-def ground_material(scene, followed=None):
-    """The material whose colour the ground takes: the followed sand while the scene still shows
-    it, else a Sandscape sand in the scene, else the surface below (or ahead of) the camera."""
-    sands = [own.slot_material(obj, own.SAND) for obj in scene.objects]
-    sands = [material for material in sands if material is not None]
-    if followed is not None and followed in sands:
-        return followed
-    if sands:
-        return sands[0]
+def _below_camera(scene):
+    """The material of the opaque surface below the scene's camera (straight down, else along
+    its view), or None."""
     camera = scene.camera
     if camera is None:
         return None
@@ -90,6 +111,19 @@ def ground_material(scene, followed=None):
         if material is not None:
             return material
     return None
+
+
+def ground_material(scene, followed=None):
+    """The material whose colour the ground takes: the surface below (or ahead of) the camera,
+    else the followed sand while the scene still shows it, else a Sandscape sand in the scene."""
+    below = _below_camera(scene)
+    if below is not None:
+        return below
+    sands = [own.slot_material(obj, own.SAND) for obj in scene.objects]
+    sands = [material for material in sands if material is not None]
+    if followed is not None and followed in sands:
+        return followed
+    return sands[0] if sands else None
 
 
 def set_colour(node, colour):
@@ -153,14 +187,13 @@ def set_sun_let_through(scene, share):
             node.outputs[0].default_value = float(share)
 
 
-def refresh(scene, material=None):
-    """Point every ground colour in the scene (the world's, the clouds') at the ground: the given
-    sand material, else ground_material(). The material followed, and whether its colour could be
-    read (False: a texture, or no ground found; the sand's colour stands in)."""
+def refresh(scene):
+    """Point every ground colour in the scene (the world's, the clouds') at ground_material().
+    The material followed, and whether its colour could be read (False: a texture, or no ground
+    found; the sand's colour stands in)."""
     trees = [tree for tree in _trees(scene) if own.node(tree, NODE) is not None]
-    if material is None:
-        world = own.scene_world(scene)
-        material = ground_material(scene, followed(world.node_tree) if world is not None else None)
+    world = own.scene_world(scene)
+    material = ground_material(scene, followed(world.node_tree) if world is not None else None)
     read = True
     for tree in trees:
         read = drive(own.node(tree, NODE), material)

@@ -4,7 +4,7 @@ import math
 
 import bpy
 
-from ..addon import atmosphere, cloud_shadows, clouds, ownership, units
+from ..addon import atmosphere, cloud_shadows, clouds, ownership, shot, units
 from ..addon.settings import SandscapeAtmosphereSettings
 from ..core import atmosphere as air
 from .base import SandscapeOperator, editable_problem, value_problem
@@ -57,17 +57,22 @@ def report_line(scene, settings, done):
             scene.eevee.clamp_surface_indirect > 0:
         parts.append(f"EEVEE's Clamp Surface Indirect kept at {scene.eevee.clamp_surface_indirect:g} "
                      "(it dims the sand's bounce light; the EEVEE presets set 0)")
-    if (ground := ground_part(done)) is not None:
+    if (ground := ground_part(scene, done)) is not None:
         parts.append(ground)
     changed = "; changed: " + "; ".join(done["changes"]) if done["changes"] else ""
     return ", ".join(parts) + changed
 
 
-def ground_part(done):
+def ground_part(scene, done):
     """Whose colour EEVEE's light from the ground takes, when it is not our sand; or None."""
     ground = done.get("ground")
-    if done["world"] is None or ground is None or ground.get(ownership.MATERIAL_KEY) == ownership.SAND:
+    if done["world"] is None or (ground is not None and ground.get(ownership.MATERIAL_KEY) == ownership.SAND):
         return None
+    if ground is None:
+        if scene.camera is None:
+            return None
+        return (f"EEVEE's light from the ground takes the sand's colour: nothing opaque lies below camera "
+                f"'{scene.camera.name}' or ahead of it")
     if done["ground_read"]:
         return f"EEVEE's light from the ground takes the colour of your '{ground.name}'"
     return (f"EEVEE's light from the ground takes the sand's colour: your '{ground.name}' gets its colour "
@@ -90,6 +95,8 @@ class SANDSCAPE_OT_add_atmosphere(SandscapeOperator, bpy.types.Operator):
         self.report({"INFO"}, report_line(scene, settings, done))
         if warning := atmosphere.clip_warning(scene, done["volume"]):
             self.report({"WARNING"}, warning)
+        if depth := shot.eevee_depth_warning(scene):
+            self.report({"WARNING"}, depth)
         if cloud_shadows.stale(scene):  # made for the sun as it was
             if clouds.refresh_shadows(scene):
                 self.report({"INFO"}, "EEVEE's cloud shadows remade for this sun")

@@ -2,7 +2,7 @@
 
 import bpy
 
-from ..addon import cloud_shadows, clouds, far_haze, ownership, units
+from ..addon import cloud_shadows, clouds, far_haze, ownership, shot, units
 from ..addon.settings import CLOUD_LIMITS, cloud_fields
 from .base import SandscapeOperator, SceneSettings, editable_problem, has_camera, value_problem
 
@@ -83,6 +83,8 @@ class SANDSCAPE_OT_add_clouds(SceneSettings, SandscapeOperator, bpy.types.Operat
                     + ("; changed: " + "; ".join(done["changes"]) if done["changes"] else ""))
         if done["warning"]:
             self.report({"WARNING"}, done["warning"])
+        if depth := shot.eevee_depth_warning(scene):
+            self.report({"WARNING"}, depth)
         return {"FINISHED"}
 
 

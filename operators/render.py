@@ -4,7 +4,7 @@ reach the image."""
 import bpy
 from bpy.props import BoolProperty, EnumProperty
 
-from ..addon import optimize, presets
+from ..addon import optimize, presets, shot
 from ..addon.post_passes import ENGINE_NAMES
 from .base import SandscapeOperator
 
@@ -88,6 +88,8 @@ class SANDSCAPE_OT_apply_quality_preset(SandscapeOperator, bpy.types.Operator):
             ignored = "; the sharp pixel filter is Cycles' and was left out" if self.sharp_pixels else ""
             self.report({"INFO"}, f"{self.preset.title()} (EEVEE): "
                         + ", ".join(f"{k} {v}" for k, v in settings.items()) + switched + ignored)
+            if depth := shot.eevee_depth_warning(scene):
+                self.report({"WARNING"}, depth)
             return {"FINISHED"}
         settings = dict(presets.PRESETS[self.preset], **(presets.SHARP_FILTER if self.sharp_pixels else {}))
         presets.apply(scene, settings)

@@ -50,11 +50,12 @@ def _camera_over(obj, height=1.6):
 
 def test_the_ground_takes_the_colour_of_their_ground_under_the_camera(sandscape):
     """No Sandscape sand: the world's ground colour follows the face below the camera (through our
-    dust box, on a rotated and scaled plane of two materials), and an edit to it follows; the
-    operator says whose colour it took."""
+    dust box, on a rotated, scaled and subdivided plane of two materials), and an edit to it
+    follows; the sidebar says whose colour it took."""
     bpy.ops.wm.read_homefile(use_empty=True)
     scene = bpy.context.scene
     obj = _their_ground()
+    obj.modifiers.new("Subdivision", "SUBSURF").levels = 2  # faces the original mesh does not have
     _camera_over(obj)
     assert bpy.ops.sandscape.add_atmosphere() == {"FINISHED"}
     olive = obj.data.materials[1]
@@ -157,3 +158,53 @@ def test_the_clouds_bases_get_the_sun_the_layer_lets_through_on_the_whole(sandsc
     air.sun_elevation = math.radians(0.3)  # under cloud_shadows.LOWEST_SUN: no map
     assert bpy.ops.sandscape.add_atmosphere() == {"FINISHED"}
     assert held.default_value == 1.0
+
+
+def test_each_scene_takes_its_own_ground(sandscape):
+    """A second scene, not the one shown, run through temp_override: its world follows the
+    ground below its own camera, and the first scene's world keeps its own."""
+    bpy.ops.wm.read_homefile(use_empty=True)
+    first = bpy.context.scene
+    obj = _their_ground()
+    _camera_over(obj)
+    assert bpy.ops.sandscape.add_atmosphere() == {"FINISHED"}
+    second = bpy.data.scenes.new("Second")
+    mesh = bpy.data.meshes.new("Basalt")
+    mesh.from_pydata([(40, 40, 0), (60, 40, 0), (60, 60, 0), (40, 60, 0)], [], [(0, 1, 2, 3)])
+    basalt = bpy.data.objects.new("Basalt", mesh)
+    basalt.data.materials.append(_material("Their Basalt", (0.05, 0.05, 0.06, 1.0)))
+    second.collection.objects.link(basalt)
+    camera = bpy.data.objects.new("Second Camera", bpy.data.cameras.new("Second Camera"))
+    second.collection.objects.link(camera)
+    camera.location = (50.0, 50.0, 2.0)
+    second.camera = camera
+    with bpy.context.temp_override(scene=second):
+        assert bpy.ops.sandscape.add_atmosphere() == {"FINISHED"}
+    followed = sandscape.addon.sky_eevee.followed_ground
+    assert followed(second.world) == basalt.data.materials[0]
+    assert followed(first.world) == obj.data.materials[1]
+
+
+@pytest.mark.parametrize("pane", ["ShaderNodeBsdfGlass", "Principled Transmission", "Hidden"])
+def test_the_ground_is_found_through_glass_round_the_camera_and_past_a_sand_rock(sandscape, pane):
+    """A glass box round the camera (or a box hidden from renders) is passed through; a small
+    rock of Sandscape sand elsewhere does not take over from the ground below the camera."""
+    bpy.ops.wm.read_homefile(use_empty=True)
+    scene = bpy.context.scene
+    obj = _their_ground()
+    _camera_over(obj)
+    bpy.ops.mesh.primitive_cube_add(size=1.0, location=scene.camera.location)
+    box = bpy.context.active_object
+    if pane == "ShaderNodeBsdfGlass":
+        box.data.materials.append(scenes.single_node_material("Their Glass", pane))
+    else:
+        glass = _material("Their Glass", (1.0, 1.0, 1.0, 1.0))
+        glass.node_tree.nodes["Principled BSDF"].inputs["Transmission Weight"].default_value = 1.0
+        box.data.materials.append(glass)
+        box.hide_render = pane == "Hidden"
+        if box.hide_render:
+            glass.node_tree.nodes["Principled BSDF"].inputs["Transmission Weight"].default_value = 0.0
+    bpy.ops.mesh.primitive_ico_sphere_add(radius=0.5, location=(-500.0, 300.0, 0.0))
+    assert bpy.ops.sandscape.add_sand_material() == {"FINISHED"}  # on the rock
+    assert bpy.ops.sandscape.add_atmosphere() == {"FINISHED"}
+    assert sandscape.addon.sky_eevee.followed_ground(scene.world) == obj.data.materials[1]

@@ -4,7 +4,17 @@ poll() allows."""
 
 import bpy
 
-from ..addon import atmosphere, cloud_shadows, dunes, ownership, rig_feet, sand, sand_eevee, sky_eevee
+from ..addon import (
+    atmosphere,
+    cloud_shadows,
+    dunes,
+    ownership,
+    rig_feet,
+    sand,
+    sand_eevee,
+    sky_eevee,
+    sky_eevee_ground,
+)
 
 
 class SandscapeTab:
@@ -241,6 +251,9 @@ def ground_light_text(scene):
     followed = sky_eevee.followed_ground(scene.world)
     if followed is None:
         return "EEVEE's light from the ground: the sand's colour"
+    found = sky_eevee_ground.colour_input(followed)
+    if found is None or found[0].inputs[found[1]].is_linked:  # a texture linked since
+        return f"EEVEE's light from the ground: '{followed.name}' changed, Add Atmosphere again"
     return f"EEVEE's light from the ground: the colour of '{followed.name}'"
 
 
