@@ -16,6 +16,11 @@ above at its top. That is single scattering with the sun's light let through exa
 clamps a volume's emission at zero, so the sun's light cannot be taken away from a scatterer).
 With EEVEE's Volume Shadows on (the artist's), a driver sets T to 1: EEVEE shades the clouds
 itself, as before, not twice.
+
+EEVEE holds one order of scattering, and over a dark ground its clouds near the horizon hardly
+stood out from the sky (the sand's warm light from below had stood in for the rest). The higher
+orders are emitted as octaves of the baked T (core.cloud_shadows.many_scatterings; Wrenninge
+2015), isotropic: the light deep in a cloud and on its faces turned from the sun.
 """
 
 import math
@@ -29,6 +34,7 @@ GRID = "sun_transmittance"
 SUN_DIRECTION = "Sandscape Cloud Sun Direction"
 SHADOWS_SWITCH = "Sandscape Cloud EEVEE Shadows"
 OUTPUT = "Sandscape EEVEE Output"
+MANY_SCATTERINGS = "Sandscape EEVEE Many Scatterings"
 
 
 def march(tree, volume, sun, thickness, step, density, wet):
@@ -120,14 +126,30 @@ def _ambient(tree, sun, ground, base, thickness):
     h.link(tree, below.outputs[0], mix.inputs["A"])
     h.link(tree, sky, mix.inputs["B"])
     ambient = h.vector_math(tree, "SCALE", mix.outputs["Result"], Scale=0.5 / math.pi, label="Radiance")
-    return ambient.outputs[0]
+    return ambient.outputs[0], light.outputs[0]
+
+
+def _many_scatterings(tree, let_through, light):
+    """Colour socket: the radiance the higher orders of scattering send per unit of extinction,
+    the lamp's light x core.cloud_shadows.many_scatterings(T) / 4 pi (isotropic)."""
+    total = None
+    for order in range(1, shadow_twin.OCTAVES + 1):
+        scale = shadow_twin.OCTAVE_SCALE**order
+        reached = h.math(tree, "POWER", let_through, scale)
+        term = h.math(tree, "MULTIPLY", reached.outputs[0], scale / (4.0 * math.pi))
+        total = term if total is None else h.math(tree, "ADD", total.outputs[0], term.outputs[0])
+    total.label = "Higher Orders' Share / 4π"
+    radiance = h.vector_math(tree, "SCALE", light, Scale=1.0, label="Many Scatterings")
+    h.link(tree, total.outputs[0], radiance.inputs["Scale"])
+    return radiance.outputs[0]
 
 
 def eevee_output(tree, density, scattering, scene, sun, base, thickness):
     """The material's EEVEE output for a baked grid: density socket -> a share T scattering
     (scattering(tree, density socket) -> volume socket), the rest absorbing and emitting the
-    ambient light (_ambient) of the layer between base and base + thickness. With the scene's
-    Volume Shadows on, T is 1."""
+    ambient light (_ambient) of the layer between base and base + thickness; all of it emitting
+    the higher orders' light (_many_scatterings). With the scene's Volume Shadows on, the share
+    scattering is all of it."""
     attribute = h.add_node(tree, "ShaderNodeAttribute", attribute_type="GEOMETRY", attribute_name=GRID,
                            label="Sun's Light Let Through")
     switch = h.add_node(tree, "ShaderNodeValue", name=SHADOWS_SWITCH, label="EEVEE Shadows On (driven)")
@@ -139,14 +161,20 @@ def eevee_output(tree, density, scattering, scene, sun, base, thickness):
     absorbed = h.add_node(tree, "ShaderNodeVolumeAbsorption", inputs={"Color": (0.0, 0.0, 0.0, 1.0)})
     h.link(tree, unlit.outputs[0], absorbed.inputs["Density"])
     glow = h.add_node(tree, "ShaderNodeEmission", label="The World's Light")
-    h.link(tree, _ambient(tree, sun, _ground_colour(tree, scene), base, thickness), glow.inputs["Color"])
+    ambient, light = _ambient(tree, sun, _ground_colour(tree, scene), base, thickness)
+    h.link(tree, ambient, glow.inputs["Color"])
     h.link(tree, unlit.outputs[0], glow.inputs["Strength"])
-    first = h.add_node(tree, "ShaderNodeAddShader")
-    h.link(tree, scattering(tree, lit.outputs[0]), first.inputs[0])
-    h.link(tree, absorbed.outputs[0], first.inputs[1])
-    both = h.add_node(tree, "ShaderNodeAddShader")
-    h.link(tree, first.outputs[0], both.inputs[0])
-    h.link(tree, glow.outputs[0], both.inputs[1])
+    # The higher orders from the baked T itself, also under EEVEE's own shadows.
+    orders = h.add_node(tree, "ShaderNodeEmission", name=MANY_SCATTERINGS, label="Many Scatterings")
+    h.link(tree, _many_scatterings(tree, attribute.outputs["Fac"], light), orders.inputs["Color"])
+    h.link(tree, density, orders.inputs["Strength"])
+    shaders = [scattering(tree, lit.outputs[0]), absorbed.outputs[0], glow.outputs[0], orders.outputs[0]]
+    total = shaders[0]
+    for shader in shaders[1:]:
+        add = h.add_node(tree, "ShaderNodeAddShader")
+        h.link(tree, total, add.inputs[0])
+        h.link(tree, shader, add.inputs[1])
+        total = add.outputs[0]
     output = h.add_node(tree, "ShaderNodeOutputMaterial", name=OUTPUT, target="EEVEE")
-    h.link(tree, both.outputs[0], output.inputs["Volume"])
+    h.link(tree, total, output.inputs["Volume"])
     return output

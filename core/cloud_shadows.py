@@ -10,6 +10,9 @@ import numpy as np
 MAX_TEXELS = 192  # along the longer side of the layer's box: the shadows' edges blur over a texel
 MAX_STEPS = 48  # along the sun's ray through the layer (a 6-degree sun's crosses 10 thicknesses)
 LOWEST_SINE = float(np.sin(np.radians(0.5)))  # a lower sun's ray is stepped as if it stood this high
+# The higher orders of scattering as octaves (Wrenninge 2015): order i sees the extinction and
+# scatters the light each scaled by OCTAVE_SCALE^i.
+OCTAVES, OCTAVE_SCALE = 3, 0.5
 
 
 def unit(vector):
@@ -74,6 +77,15 @@ def voxel_transmittance(cloudiness, corner, voxel, to_sun, thickness, steps, den
         points = centres + to_sun * (k + 0.5) * across
         depth += np.clip(trilinear(cloudiness, corner, voxel, points), 0.0, wet)
     return np.exp(-depth * across * density)
+
+
+def many_scatterings(let_through, octaves=OCTAVES, scale=OCTAVE_SCALE):
+    """The sun's light the second to last orders of scattering bring a voxel, as a share of the
+    lamp's, from T the light let through to it: the sum over i = 1..octaves of scale^i x
+    T^(scale^i) (extinction scaled by scale^i: exp(-scale^i tau)). Their lobes flatten with each
+    order: taken isotropic."""
+    t = np.clip(np.asarray(let_through, np.float64), 0.0, 1.0)
+    return sum(scale ** i * t ** (scale ** i) for i in range(1, octaves + 1))
 
 
 def trilinear(values, corner, voxel, points):

@@ -159,3 +159,15 @@ def test_a_centimetre_scene_bakes_the_same_light(sandscape):
     assert centimetres.shape == metres.shape
     print(f"centimetres against metres: largest difference {np.abs(centimetres - metres).max():.1e}")
     assert np.abs(centimetres - metres).max() <= MARCH_TOLERANCE
+
+
+def test_the_higher_orders_bring_less_than_the_sun_and_most_where_it_does_not_reach():
+    """core.cloud_shadows.many_scatterings, the EEVEE clouds' higher orders: under the lamp's own
+    light at a cloud's sunlit edge (7/8 of it at T = 1), none where no light gets in at all, and
+    deep in a cloud (optical depth 20 towards the sun) far more than the single order's T."""
+    assert twin.many_scatterings(1.0) == 0.875
+    assert twin.many_scatterings(0.0) == 0.0
+    deep = math.exp(-20.0)
+    assert twin.many_scatterings(deep) > 1e3 * deep
+    values = twin.many_scatterings(np.linspace(0.0, 1.0, 101))
+    assert np.all(np.diff(values) > 0)

@@ -112,3 +112,45 @@ def test_clouds_over_their_own_ground_change_as_in_cycles(eevee_scene, sandscape
     following = abs(ratios["olive"] / ratios["sand"] - 1.0)
     assert following <= GROUND_TOLERANCE
     assert following < abs(ratios["olive, sand's colour"] / ratios["sand"] - 1.0)
+
+
+BASALT = (0.045, 0.045, 0.05, 1.0)
+LEAST_HORIZON_CORRELATION = 0.75  # of the sky's luminance with Cycles', near the horizon
+LEAST_ORDERS_GAIN = 0.1  # that correlation's gain from the higher orders of scattering
+
+
+@pytest.mark.sweep  # three renders at 96x54
+def test_far_clouds_over_a_dark_ground_stand_out_as_in_cycles(eevee_scene, sandscape):
+    """A helper's view (2026-12-07): a basalt ground, a camera 3 m up pitched 5 degrees above the
+    horizon, the sun 30 degrees up behind it to the right. With one order of scattering EEVEE's
+    far clouds hardly stood out from the sky; the higher orders (core.cloud_shadows.
+    many_scatterings) bring the sky's luminance, pixel by pixel, towards Cycles'."""
+    scene = eevee_scene
+    scene.render.resolution_x, scene.render.resolution_y = 96, 54
+    bpy.ops.mesh.primitive_plane_add(size=3e4)
+    bpy.context.active_object.data.materials.append(scenes.single_node_material(
+        "Basalt", "ShaderNodeBsdfDiffuse", Color=BASALT))
+    camera = scenes.camera("PERSP", location=(0.0, 0.0, 3.0), rotation=(math.radians(95.0), 0.0, 0.0),
+                           lens=35.0)
+    camera.data.clip_end = 1e5
+    air = scene.sandscape_atmosphere
+    air.sun_elevation, air.sun_azimuth, air.set_exposure = math.radians(30.0), math.radians(200.0), True
+    assert bpy.ops.sandscape.add_atmosphere() == {"FINISHED"}
+    assert bpy.ops.sandscape.add_clouds(coverage=0.5, seed=7, voxel=400.0) == {"FINISHED"}
+    presets = sandscape.addon.presets
+    presets.apply_eevee(scene, presets.EEVEE_PRESETS["DRAFT"])
+    scene.eevee.taa_render_samples = 8
+    scene.cycles.samples = 16
+    scene.cycles.volume_bounces = scene.cycles.max_bounces = presets.PRESETS["DRAFT"]["volume_bounces"]
+    sky = ~scenes.pixel_hits(scene, camera, 96, 54, (0.0, 0.0, 1.0))["hit"]
+    sky[: 2 * 54 // 3] = False  # the top third (rows bottom-up): clouds 10-21 degrees up, kilometres off
+    cycles = _sky_luminance(scene, "CYCLES", sky)
+    orders = _correlation(cycles, _sky_luminance(scene, "BLENDER_EEVEE", sky))
+    layer = next(o for o in scene.objects if o.get("sandscape_object") == "clouds")
+    emission = layer.active_material.node_tree.nodes[sandscape.addon.cloud_sunlight.MANY_SCATTERINGS]
+    layer.active_material.node_tree.links.remove(emission.inputs["Strength"].links[0])
+    emission.inputs["Strength"].default_value = 0.0
+    single = _correlation(cycles, _sky_luminance(scene, "BLENDER_EEVEE", sky))
+    print(f"far clouds over basalt: correlation {orders:.3f} with Cycles, {single:.3f} with one order")
+    assert orders >= LEAST_HORIZON_CORRELATION
+    assert orders - single >= LEAST_ORDERS_GAIN
