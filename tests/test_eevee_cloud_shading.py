@@ -16,28 +16,29 @@ SIZE = (64, 36)
 LEAST_CORRELATION = 0.8  # of the sky's luminance, pixel by pixel, with Cycles'
 
 
-def _cloud_view(scene, sandscape, azimuth):
+def _cloud_view(scene, sandscape, azimuth, ground=None, elevation=20.0, pitch=105.0, height=1.5, lens=24.0,
+                size=SIZE, plane=1e5, seed=0, samples=(4, 8)):
     """Sand out to the horizon, Add Atmosphere's sky with a 20 degree sun at `azimuth` (0: ahead of
     the camera, 180: behind it), Add Clouds over it, and a camera 1.5 m up looking 15 degrees
-    above the horizon; EEVEE with the Draft preset, Cycles with its volume bounces. Returns the
-    sky's pixels (rows bottom-up)."""
-    scene.render.resolution_x, scene.render.resolution_y = SIZE
-    bpy.ops.mesh.primitive_plane_add(size=1e5)  # the clouds' bases see lit sand below, in Cycles too
+    above the horizon (by default; a ground colour, sun, camera, size, seed and EEVEE and Cycles
+    samples of one's own); EEVEE with the Draft preset, Cycles with its volume bounces. Returns
+    the sky's pixels (rows bottom-up)."""
+    scene.render.resolution_x, scene.render.resolution_y = size
+    bpy.ops.mesh.primitive_plane_add(size=plane)  # the clouds' bases see lit ground below, in Cycles too
     bpy.context.active_object.data.materials.append(scenes.single_node_material(
-        "Ground", "ShaderNodeBsdfDiffuse", Color=sandscape.core.sand.SAND_COLOR))
-    camera = scenes.camera("PERSP", location=(0.0, 0.0, 1.5), rotation=(math.radians(105.0), 0.0, 0.0),
-                           lens=24.0)
+        "Ground", "ShaderNodeBsdfDiffuse", Color=ground or sandscape.core.sand.SAND_COLOR))
+    camera = scenes.camera("PERSP", location=(0.0, 0.0, height), rotation=(math.radians(pitch), 0.0, 0.0),
+                           lens=lens)
     camera.data.clip_end = 1e5
     air = scene.sandscape_atmosphere
-    air.sun_elevation, air.sun_azimuth = math.radians(20.0), math.radians(azimuth)
+    air.sun_elevation, air.sun_azimuth = math.radians(elevation), math.radians(azimuth)
     assert bpy.ops.sandscape.add_atmosphere() == {"FINISHED"}
-    assert bpy.ops.sandscape.add_clouds(coverage=0.5, seed=0, voxel=400.0) == {"FINISHED"}
+    assert bpy.ops.sandscape.add_clouds(coverage=0.5, seed=seed, voxel=400.0) == {"FINISHED"}
     presets = sandscape.addon.presets
     presets.apply_eevee(scene, presets.EEVEE_PRESETS["DRAFT"])
-    scene.eevee.taa_render_samples = 4
-    scene.cycles.samples = 8
+    scene.eevee.taa_render_samples, scene.cycles.samples = samples
     scene.cycles.volume_bounces = scene.cycles.max_bounces = presets.PRESETS["DRAFT"]["volume_bounces"]
-    return ~scenes.pixel_hits(scene, camera, *SIZE, (0.0, 0.0, 1.0))["hit"]
+    return ~scenes.pixel_hits(scene, camera, *size, (0.0, 0.0, 1.0))["hit"]
 
 
 def _sky_luminance(scene, engine, sky):
@@ -126,23 +127,8 @@ def test_far_clouds_over_a_dark_ground_stand_out_as_in_cycles(eevee_scene, sands
     far clouds hardly stood out from the sky; the higher orders (core.cloud_shadows.
     many_scatterings) bring the sky's luminance, pixel by pixel, towards Cycles'."""
     scene = eevee_scene
-    scene.render.resolution_x, scene.render.resolution_y = 96, 54
-    bpy.ops.mesh.primitive_plane_add(size=3e4)
-    bpy.context.active_object.data.materials.append(scenes.single_node_material(
-        "Basalt", "ShaderNodeBsdfDiffuse", Color=BASALT))
-    camera = scenes.camera("PERSP", location=(0.0, 0.0, 3.0), rotation=(math.radians(95.0), 0.0, 0.0),
-                           lens=35.0)
-    camera.data.clip_end = 1e5
-    air = scene.sandscape_atmosphere
-    air.sun_elevation, air.sun_azimuth, air.set_exposure = math.radians(30.0), math.radians(200.0), True
-    assert bpy.ops.sandscape.add_atmosphere() == {"FINISHED"}
-    assert bpy.ops.sandscape.add_clouds(coverage=0.5, seed=7, voxel=400.0) == {"FINISHED"}
-    presets = sandscape.addon.presets
-    presets.apply_eevee(scene, presets.EEVEE_PRESETS["DRAFT"])
-    scene.eevee.taa_render_samples = 8
-    scene.cycles.samples = 16
-    scene.cycles.volume_bounces = scene.cycles.max_bounces = presets.PRESETS["DRAFT"]["volume_bounces"]
-    sky = ~scenes.pixel_hits(scene, camera, 96, 54, (0.0, 0.0, 1.0))["hit"]
+    sky = _cloud_view(scene, sandscape, 200.0, BASALT, elevation=30.0, pitch=95.0, height=3.0, lens=35.0,
+                      size=(96, 54), plane=3e4, seed=7, samples=(8, 16))
     sky[: 2 * 54 // 3] = False  # the top third (rows bottom-up): clouds 10-21 degrees up, kilometres off
     cycles = _sky_luminance(scene, "CYCLES", sky)
     orders = _correlation(cycles, _sky_luminance(scene, "BLENDER_EEVEE", sky))
