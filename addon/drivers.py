@@ -35,6 +35,15 @@ def drive(owner, path, expression, variables, index=-1):
     return driver
 
 
+def driven_by(tree, node_name):
+    """The ID the first driver on the named node's first input reads (a node tree's), or None."""
+    if tree is None or tree.nodes.get(node_name) is None or tree.animation_data is None:
+        return None
+    path = f'nodes["{node_name}"].inputs[0].default_value'
+    driver = next((c.driver for c in tree.animation_data.drivers if c.data_path == path), None)
+    return driver.variables[0].targets[0].id if driver is not None and driver.variables else None
+
+
 def lamp_axis(lamp, names=("sa", "sb", "sc")):
     """Variables reading a lamp's world +Z (matrix_world's third column, towards the sun for a sun
     lamp): names[i] reads component i."""

@@ -217,13 +217,7 @@ def follow_clamp(world, scene):
 
 
 def _driven_by(world, name):
-    """The ID the first driver on this node's first input reads, or None."""
-    tree = world.node_tree if world is not None else None
-    if own.node(tree, name) is None or tree.animation_data is None:
-        return None
-    path = f'nodes["{name}"].inputs[0].default_value'
-    driver = next((c.driver for c in tree.animation_data.drivers if c.data_path == path), None)
-    return driver.variables[0].targets[0].id if driver is not None and driver.variables else None
+    return drivers.driven_by(world.node_tree if world is not None else None, name)
 
 
 def followed_sun(world):

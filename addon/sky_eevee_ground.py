@@ -35,33 +35,31 @@ SUN_LET_THROUGH = "Sandscape EEVEE Ground Sun Let Through"  # a Value node besid
 HITS = 8  # surfaces passed through looking for the ground (volume boxes, glass)
 
 
+def _surface_shader(material):
+    """The node on the material's EEVEE output's Surface, or None."""
+    tree = material.node_tree if material is not None else None
+    output = tree.get_output_node("EEVEE") if tree is not None else None
+    surface = output.inputs["Surface"] if output is not None else None
+    return surface.links[0].from_node if surface is not None and surface.is_linked else None
+
+
 def colour_input(material):
     """(node, input name) giving the material's surface its colour, or None: our sand's look,
     else the shader on the EEVEE output's Surface."""
-    tree = material.node_tree if material is not None else None
-    if tree is None:
-        return None
-    if material.get(own.MATERIAL_KEY) == own.SAND:
-        look = tree.nodes.get(LOOK)
+    if material is not None and material.get(own.MATERIAL_KEY) == own.SAND and material.node_tree:
+        look = material.node_tree.nodes.get(LOOK)
         return (look, "Color") if look is not None and "Color" in look.inputs else None
-    output = tree.get_output_node("EEVEE")
-    surface = output.inputs["Surface"] if output is not None else None
-    if surface is None or not surface.is_linked:
-        return None
-    shader = surface.links[0].from_node
-    name = SHADER_COLOUR.get(shader.bl_idname)
+    shader = _surface_shader(material)
+    name = SHADER_COLOUR.get(shader.bl_idname) if shader is not None else None
     return (shader, name) if name is not None else None
 
 
 def see_through(material):
     """Whether the material's surface lets the view through (glass, a transmissive or cut-out
     Principled, a transparent shader): not a ground, whatever lies behind it."""
-    tree = material.node_tree
-    output = tree.get_output_node("EEVEE") if tree is not None else None
-    surface = output.inputs["Surface"] if output is not None else None
-    if surface is None or not surface.is_linked:
+    shader = _surface_shader(material)
+    if shader is None:
         return False
-    shader = surface.links[0].from_node
     if shader.bl_idname in SEE_THROUGH:
         return True
     if shader.bl_idname != "ShaderNodeBsdfPrincipled":
@@ -71,11 +69,10 @@ def see_through(material):
             or (not alpha.is_linked and alpha.default_value < 0.5))
 
 
-def _surface_material(scene, origin, direction):
+def _surface_material(scene, depsgraph, origin, direction):
     """The material first met from origin along direction on an opaque surface that renders and
     is not ours (the dust box, the clouds, the haze are volumes in mesh boxes; the walker stands
     on the ground), else None."""
-    depsgraph = evaluation.scene_depsgraph(scene)
     for _ in range(HITS):
         hit, location, _normal, index, obj, _matrix = scene.ray_cast(depsgraph, origin, direction)
         if not hit:
@@ -104,10 +101,11 @@ def _below_camera(scene):
     camera = scene.camera
     if camera is None:
         return None
-    matrix = evaluation.world_matrix(scene, camera)
+    depsgraph = evaluation.scene_depsgraph(scene)  # once: both rays and the camera's place
+    matrix = camera.evaluated_get(depsgraph).matrix_world
     origin = matrix.translation
     for direction in (Vector((0.0, 0.0, -1.0)), -(matrix.to_3x3() @ Vector((0.0, 0.0, 1.0))).normalized()):
-        material = _surface_material(scene, origin, direction)
+        material = _surface_material(scene, depsgraph, origin, direction)
         if material is not None:
             return material
     return None
@@ -149,12 +147,7 @@ def drive(node, material):
 
 def followed(tree):
     """The material the tree's ground colour follows, or None."""
-    node = own.node(tree, NODE)
-    if node is None or tree.animation_data is None:
-        return None
-    path = f'nodes["{NODE}"].inputs[0].default_value'
-    driver = next((c.driver for c in tree.animation_data.drivers if c.data_path == path), None)
-    return driver.variables[0].targets[0].id if driver is not None and driver.variables else None
+    return drivers.driven_by(tree, NODE)
 
 
 def _trees(scene):
