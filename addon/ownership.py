@@ -14,6 +14,7 @@ from ..node_groups import helper
 GROUP_KEY = helper.GROUP_KEY  # node groups: found by this key (the builder's NAME), never by name
 OBJECT_KEY = "sandscape_object"
 MATERIAL_KEY = "sandscape_material"
+STRUCTURE_KEY = "sandscape_structure"  # our sand's look / glints / source / ripples (addon/sand.py)
 IMAGE_KEY = "sandscape_image"
 WORLD_KEY = "sandscape_world"
 TREE_KEY = "sandscape_compositor"

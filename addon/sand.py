@@ -39,7 +39,7 @@ RIPPLE_INPUTS = ("Wavelength", "Amplitude", "Steep Fraction", "Lee Fraction", "M
 RIPPLE_SETTINGS = {"ripple_wavelength": "Wavelength", "ripple_amplitude": "Amplitude",
                    "ripple_meander": "Meander", "ripple_meander_scale": "Meander Scale",
                    "ripple_variation": "Variation", "ripple_defects": "Defects"}
-STRUCTURE_KEY = "sandscape_structure"  # look / glints / source / ripples of the tree built
+STRUCTURE_KEY = own.STRUCTURE_KEY  # look / glints / source / ripples of the tree built
 # Node names inside our material.
 PRINT_SPACE, PRINT_REGION = "Sandscape Print Space", "Sandscape Print Region"
 PRINT_MAP, PRINT_TEXELS, PRINT_CORNERS, PRINT_BLEND = (

@@ -25,6 +25,7 @@ import math
 import numpy as np
 
 from ..core import atmosphere as air
+from ..core import eevee_upright
 from ..core import sun as sky_sun
 from ..node_groups import helper as h
 from . import compat, drivers, sky_eevee_clouds, sky_eevee_ground, sky_eevee_haze
@@ -35,6 +36,9 @@ OUTPUT = "Sandscape EEVEE World Output"
 SUN, SUN_LIGHT = "Sandscape EEVEE Ground Sun", "Sandscape EEVEE Ground Sun Light"
 SKY_LIGHT, GROUND_COLOR = "Sandscape EEVEE Ground Sky Light", sky_eevee_ground.NODE
 CLAMP = "Sandscape EEVEE Clamp"
+# The ground's light on upright things as our sand gives it (core/eevee_upright.py), by the sun's
+# elevation; sky_eevee_ground's share says how much of it applies (1 on our sand).
+UPRIGHT_GAIN = "Sandscape EEVEE Sand Upright Gain"
 CLAMP_EXPRESSION = "limit if limit > 0 else 1e9"  # 0: EEVEE clamps nothing
 DISC, DISC_EDGE = "Sandscape EEVEE Sun Disc", "Sandscape EEVEE Sun Disc Edge"
 DISC_EDGE_EXPRESSION = "angle / 2"
@@ -131,7 +135,24 @@ def _level_light(tree):
     ground = h.add_node(tree, "ShaderNodeVectorMath", operation="MULTIPLY", label="Ground Radiance × π")
     h.link(tree, level.outputs[0], ground.inputs[0])
     h.link(tree, color.outputs[0], ground.inputs[1])
-    return sky, ground.outputs[0], sun_unit, light.outputs[0]
+    upright = h.add_node(tree, "ShaderNodeVectorMath", operation="MULTIPLY", label="× Upright Gain")
+    h.link(tree, ground.outputs[0], upright.inputs[0])
+    h.link(tree, _upright_gain(tree, height.outputs[0]), upright.inputs[1])
+    return sky, upright.outputs[0], sun_unit, light.outputs[0]
+
+
+def _upright_gain(tree, height):
+    """Our sand's gain on the ground's light (core/eevee_upright.py) by the sine of the sun's
+    elevation, mixed from 1 by the share of it the ground takes (sky_eevee_ground.upright_share_node)."""
+    degrees, gains = eevee_upright.rows()
+    gain = table_curve(tree, height, np.sin(np.radians(degrees)), gains, UPRIGHT_GAIN,
+                       "Sand's Upright Gain ÷ Its Peak")
+    share = sky_eevee_ground.upright_share_node(tree)
+    mix = h.add_node(tree, "ShaderNodeMix", data_type="RGBA", label="Upright Gain Where the Ground Is Ours")
+    h.link(tree, share.outputs[0], mix.inputs["Factor"])
+    h.socket(mix.inputs, "A").default_value = (1.0, 1.0, 1.0, 1.0)
+    h.link(tree, gain, h.socket(mix.inputs, "B"))
+    return h.socket(mix.outputs, "Result")
 
 
 def _with_disc(tree, view, sun, light, shown):
@@ -162,14 +183,22 @@ def _with_disc(tree, view, sun, light, shown):
 
 def sky_irradiance(tree, height):
     """The sky's irradiance on level ground by the sine of the sun's elevation (the sky model's
-    table, linear between its rows), through an RGB Curves node per channel."""
+    table, linear between its rows)."""
     degrees, columns = sky_sun.sky_rows()
     rows = degrees >= 0
-    sines, columns = np.sin(np.radians(degrees[rows])), columns[rows]
+    return table_curve(tree, height, np.sin(np.radians(degrees[rows])), columns[rows], SKY_LIGHT,
+                       "Sky on Level Sand ÷ Its Peak")
+
+
+def table_curve(tree, height, sines, columns, name, label):
+    """A table's (R, G, B) columns by the sine of the sun's elevation, linear between its rows and
+    held beyond them, through an RGB Curves node per channel (each divided by its peak: a curve
+    holds 0-1) and multiplied back: the colour socket."""
     peaks = columns.max(axis=0)
-    curves = h.add_node(tree, "ShaderNodeRGBCurve", name=SKY_LIGHT, label="Sky on Level Sand ÷ Its Peak")
+    curves = h.add_node(tree, "ShaderNodeRGBCurve", name=name, label=label)
     for channel in range(3):
         h.polyline_curve(curves.mapping.curves[channel], sines, columns[:, channel] / peaks[channel])
+    curves.mapping.extend = "HORIZONTAL"
     curves.mapping.update()
     grey = h.add_node(tree, "ShaderNodeCombineColor")
     for index in range(3):

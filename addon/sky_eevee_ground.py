@@ -32,6 +32,7 @@ SHADER_COLOUR = {"ShaderNodeBsdfPrincipled": "Base Color", "ShaderNodeBsdfDiffus
 SEE_THROUGH = {"ShaderNodeBsdfGlass", "ShaderNodeBsdfRefraction", "ShaderNodeBsdfTransparent",
                "ShaderNodeHoldout"}
 SUN_LET_THROUGH = "Sandscape EEVEE Ground Sun Let Through"  # a Value node beside each NODE
+UPRIGHT_SHARE = "Sandscape EEVEE Ground Is Our Sand"  # a Value node in the world: 1 our sand, 0 not
 HITS = 8  # surfaces passed through looking for the ground (volume boxes, glass)
 
 
@@ -170,6 +171,14 @@ def sun_let_through_node(tree):
     return node
 
 
+def upright_share_node(tree):
+    """A Value node: how much of our sand's upright gain (sky_eevee.py) the world's ground takes:
+    0 (a Lambert ground) until refresh() finds our Physical Sand."""
+    node = h.add_node(tree, "ShaderNodeValue", name=UPRIGHT_SHARE, label="Ground Is Our Sand (1) or Not (0)")
+    node.outputs[0].default_value = 0.0
+    return node
+
+
 def set_sun_let_through(scene, share):
     """The share of the lamp's light the cloud layer lets through to the ground, on the whole (the
     mean of EEVEE's cloud-shadow map; 1 without one): the lit ground's light the clouds' bases
@@ -190,4 +199,9 @@ def refresh(scene):
     read = True
     for tree in trees:
         read = drive(own.node(tree, NODE), material)
+    ours = material is not None and material.get(own.MATERIAL_KEY) == own.SAND and \
+        str(material.get(own.STRUCTURE_KEY, "PHYSICAL")).startswith("PHYSICAL")
+    share = own.node(world.node_tree, UPRIGHT_SHARE) if world is not None and world.node_tree else None
+    if share is not None:  # measured on Physical Sand; any other ground (or none found) as Lambert
+        share.outputs[0].default_value = 1.0 if ours else 0.0
     return material, read and material is not None
