@@ -367,13 +367,13 @@ def apply(scene, settings):
     sky_eevee.follow_sun(world, sun)
     sky_eevee.follow_clamp(world, scene)
     sky_eevee_clouds.follow_scene(scene)
-    ground, ground_read = sky_eevee_ground.refresh(scene)  # the sand, else the artist's ground
+    ground, ground_image, ground_read = sky_eevee_ground.refresh(scene)  # the sand, else the artist's ground
     haze_shell, _ = refresh_far_haze(scene)  # hollowed round the box as it is now
     # Volume sampling, like the exposure, is the artist's: the quality presets set it.
     return {"sun": sun, "followed": followed, "elevation": elevation, "azimuth": azimuth, "world": world,
             "volume": box, "coefficients": per_metre, "exposure": exposure, "changes": changes,
             "far_haze": haze_shell,
-            "ground": ground, "ground_read": ground_read}
+            "ground": ground, "ground_image": ground_image, "ground_read": ground_read}
 
 
 def clip_warning(scene, box):

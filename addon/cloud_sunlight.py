@@ -96,7 +96,7 @@ def _ground_colour(tree, scene):
     node = h.add_node(tree, "ShaderNodeCombineColor", name=sky_eevee_ground.NODE,
                       label="Ground Colour (driven)")
     world = own.scene_world(scene)
-    sky_eevee_ground.drive(node, sky_eevee_ground.followed(world.node_tree) if world is not None else None)
+    sky_eevee_ground.match(node, world.node_tree if world is not None else None)
     return node.outputs[0]
 
 

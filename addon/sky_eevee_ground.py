@@ -8,8 +8,10 @@ surface below the camera (straight down, else along its view; what renders and i
 else the Sandscape sand last added or updated: its shader's colour (a Principled BSDF's Base
 Color, a Diffuse BSDF's Color, our sand's look's Color). Each follows that colour through
 simple-expression drivers, so an artist's later change to it carries to both, with no Python on
-a farm. A colour from a texture cannot be read by a driver: the sand's colour stands in, and
-the operator says so.
+a farm. A colour from an image (an Image Texture on the colour input, through reroutes) gives the
+image's mean in linear light, fixed when an operator runs (core/image_mean.py; a driver cannot
+read an image). Any other texture or node cannot be read: the sand's colour stands in. The
+operator says which.
 
 Under the clouds' bases the lit ground's light is the lamp's let through the layer plus the
 sky's: the share let through is the mean of EEVEE's cloud-shadow map (cloud_shadows.py), set
@@ -19,8 +21,11 @@ round what it lights, a walker in the sun, and one mean over the layer darkened 
 walker further (README).
 """
 
+import bpy
+import numpy as np
 from mathutils import Vector
 
+from ..core import image_mean
 from ..core import sand as core_sand
 from ..node_groups import helper as h
 from . import drivers, evaluation
@@ -33,7 +38,8 @@ SEE_THROUGH = {"ShaderNodeBsdfGlass", "ShaderNodeBsdfRefraction", "ShaderNodeBsd
                "ShaderNodeHoldout"}
 SUN_LET_THROUGH = "Sandscape EEVEE Ground Sun Let Through"  # a Value node beside each NODE
 UPRIGHT_SHARE = "Sandscape EEVEE Ground Is Our Sand"  # a Value node in the world: 1 our sand, 0 not
-HITS = 8  # surfaces passed through looking for the ground (volume boxes, glass)
+HITS = 8  # surfaces passed through looking for the ground (volume boxes, glass); reroutes followed
+MEAN_PIXELS = 1 << 24  # a larger image (past 4k) is read from a copy scaled down to about this many
 
 
 def _surface_shader(material):
@@ -125,6 +131,52 @@ def ground_material(scene, followed=None):
     return sands[0] if sands else None
 
 
+def image_behind(socket):
+    """The image an Image Texture node's Color gives the socket (through reroutes), or None."""
+    for _ in range(HITS):
+        if not socket.is_linked:
+            return None
+        link = socket.links[0]
+        node = link.from_node
+        if node.bl_idname == "NodeReroute":
+            socket = node.inputs[0]
+            continue
+        if node.bl_idname == "ShaderNodeTexImage" and link.from_socket.name == "Color":
+            return node.image
+        return None
+    return None
+
+
+def _decoded_as_srgb(image):
+    """Whether the image's pixels hold sRGB-like codes: a byte image in a display space. Float
+    images are held in linear light, and data (Non-Color) is taken as it is, as a shader takes it."""
+    space = image.colorspace_settings
+    return not (image.is_float or space.is_data or "Linear" in space.name or "ACES" in space.name)
+
+
+def mean_colour(image):
+    """The image's mean colour in linear light, or None when it has no pixels (a missing file)."""
+    width, height = image.size
+    if width * height == 0:
+        return None
+    source = image
+    # Memory: a file past 4k is read from a copy scaled down (it averages codes, so a grainy image
+    # comes out darker); an image edited since it was loaded is read whole, as a copy loses edits.
+    if width * height > MEAN_PIXELS and image.source == "FILE" and not image.is_dirty:
+        shrink = (MEAN_PIXELS / (width * height)) ** 0.5
+        source = image.copy()
+        source.scale(max(1, int(width * shrink)), max(1, int(height * shrink)))
+    try:
+        pixels = np.empty(len(source.pixels), dtype=np.float32)
+        source.pixels.foreach_get(pixels)
+    finally:
+        if source is not image:
+            bpy.data.images.remove(source)
+    if len(pixels) == 0:
+        return None
+    return image_mean.mean_colour(pixels, image.channels, _decoded_as_srgb(image))
+
+
 def set_colour(node, colour):
     """The Combine Color node's colour fixed (its drivers removed)."""
     for index in range(3):
@@ -132,11 +184,25 @@ def set_colour(node, colour):
         node.inputs[index].default_value = colour[index]
 
 
-def drive(node, material):
-    """Drive the Combine Color node's channels from the material's colour input; the sand's fixed
-    colour where there is none or it is linked (a texture). Whether it follows the material."""
+def image_colour(material):
+    """(image, its mean colour) when the material's colour comes from an image it can read, else
+    None."""
     found = colour_input(material)
-    if found is None or found[0].inputs[found[1]].is_linked:
+    image = image_behind(found[0].inputs[found[1]]) if found is not None else None
+    colour = mean_colour(image) if image is not None else None
+    return (image, colour) if colour is not None else None
+
+
+def drive(node, material, imaged=None):
+    """Drive the Combine Color node's channels from the material's colour input; where that is
+    linked, the mean of its image (imaged: image_colour(material), if known), else the sand's
+    colour, fixed. Whether it took the material's colour."""
+    found = colour_input(material)
+    if found is not None and found[0].inputs[found[1]].is_linked:
+        imaged = imaged if imaged is not None else image_colour(material)
+        set_colour(node, imaged[1] if imaged is not None else core_sand.SAND_COLOR)
+        return imaged is not None
+    if found is None:
         set_colour(node, core_sand.SAND_COLOR)
         return False
     shader, name = found
@@ -144,6 +210,17 @@ def drive(node, material):
         path = f'node_tree.nodes["{shader.name}"].inputs["{name}"].default_value[{index}]'
         drivers.drive(node.inputs[index], "default_value", "colour", [("colour", "MATERIAL", material, path)])
     return True
+
+
+def match(node, tree):
+    """The Combine Color node takes what the tree's ground colour takes: the same material's colour
+    followed, else the same fixed colour (an image's mean, or the sand's)."""
+    material = followed(tree)
+    source = own.node(tree, NODE) if tree is not None else None
+    if material is not None or source is None:
+        drive(node, material)
+    else:
+        set_colour(node, [source.inputs[index].default_value for index in range(3)])
 
 
 def followed(tree):
@@ -191,17 +268,19 @@ def set_sun_let_through(scene, share):
 
 def refresh(scene):
     """Point every ground colour in the scene (the world's, the clouds') at ground_material().
-    The material followed, and whether its colour could be read (False: a texture, or no ground
-    found; the sand's colour stands in)."""
+    The material followed, the image whose mean it took (or None), and whether its colour could
+    be read (False: a texture or a node other than an image, or no ground found; the sand's colour
+    stands in)."""
     trees = [tree for tree in _trees(scene) if own.node(tree, NODE) is not None]
     world = own.scene_world(scene)
     material = ground_material(scene, followed(world.node_tree) if world is not None else None)
+    imaged = image_colour(material)  # read once for every tree
     read = True
     for tree in trees:
-        read = drive(own.node(tree, NODE), material)
+        read = drive(own.node(tree, NODE), material, imaged)
     ours = material is not None and material.get(own.MATERIAL_KEY) == own.SAND and \
         str(material.get(own.STRUCTURE_KEY, "PHYSICAL")).startswith("PHYSICAL")
     share = own.node(world.node_tree, UPRIGHT_SHARE) if world is not None and world.node_tree else None
     if share is not None:  # measured on Physical Sand; any other ground (or none found) as Lambert
         share.outputs[0].default_value = 1.0 if ours else 0.0
-    return material, read and material is not None
+    return material, imaged[0] if imaged is not None else None, read and material is not None

@@ -73,10 +73,13 @@ def ground_part(scene, done):
             return None
         return (f"EEVEE's light from the ground takes the sand's colour: nothing opaque lies below camera "
                 f"'{scene.camera.name}' or ahead of it")
+    if done["ground_read"] and done.get("ground_image") is not None:
+        return (f"EEVEE's light from the ground takes the mean colour of image '{done['ground_image'].name}' "
+                f"on your '{ground.name}' (run Add Atmosphere again after changing the image)")
     if done["ground_read"]:
         return f"EEVEE's light from the ground takes the colour of your '{ground.name}'"
     return (f"EEVEE's light from the ground takes the sand's colour: your '{ground.name}' gets its colour "
-            "from a texture or a shader it cannot read")
+            "from a texture other than an image, or a shader it cannot read")
 
 
 class SANDSCAPE_OT_add_atmosphere(SandscapeOperator, bpy.types.Operator):

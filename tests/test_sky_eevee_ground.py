@@ -81,8 +81,9 @@ def test_a_camera_past_the_grounds_edge_takes_the_ground_it_looks_at(sandscape):
 
 
 def test_a_textured_ground_leaves_the_sands_colour_and_says_so(sandscape):
-    """A Base Color from a texture cannot be driven: the sand's colour stands in, and the report
-    names the material."""
+    """A Base Color from a procedural texture can be neither driven nor averaged (an image's mean:
+    test_sky_eevee_ground_image.py): the sand's colour stands in, and the report names the
+    material."""
     bpy.ops.wm.read_homefile(use_empty=True)
     scene = bpy.context.scene
     obj = _their_ground()
