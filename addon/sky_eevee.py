@@ -255,5 +255,5 @@ def followed_sun(world):
 
 
 def followed_ground(world):
-    """The material whose colour the ground takes, or None."""
-    return _driven_by(world, GROUND_COLOR)
+    """The material whose colour the ground takes (by drivers, or its image's mean), or None."""
+    return sky_eevee_ground.followed(world.node_tree if world is not None else None)

@@ -39,6 +39,7 @@ SEE_THROUGH = {"ShaderNodeBsdfGlass", "ShaderNodeBsdfRefraction", "ShaderNodeBsd
 SUN_LET_THROUGH = "Sandscape EEVEE Ground Sun Let Through"  # a Value node beside each NODE
 UPRIGHT_SHARE = "Sandscape EEVEE Ground Is Our Sand"  # a Value node in the world: 1 our sand, 0 not
 HITS = 8  # surfaces passed through looking for the ground (volume boxes, glass); reroutes followed
+IMAGE_KEY, FOLLOWED_KEY = "sandscape_ground_image", "sandscape_ground_material"  # on NODE: an image's mean
 MEAN_PIXELS = 1 << 24  # a larger image (past 4k) is read from a copy scaled down to about this many
 
 
@@ -193,14 +194,33 @@ def image_colour(material):
     return (image, colour) if colour is not None else None
 
 
+def _record(node, material=None, image=None):
+    """Which material's image the node's fixed colour is the mean of (a driver records the rest)."""
+    for key, value in ((FOLLOWED_KEY, material), (IMAGE_KEY, image)):
+        if value is not None:
+            node[key] = value
+        elif key in node:
+            del node[key]
+
+
+def recorded_image(tree):
+    """(material, image) whose mean the tree's ground colour holds, or None."""
+    node = own.node(tree, NODE) if tree is not None else None
+    image = node.get(IMAGE_KEY) if node is not None else None
+    return (node.get(FOLLOWED_KEY), image) if image is not None else None
+
+
 def drive(node, material, imaged=None):
     """Drive the Combine Color node's channels from the material's colour input; where that is
     linked, the mean of its image (imaged: image_colour(material), if known), else the sand's
     colour, fixed. Whether it took the material's colour."""
     found = colour_input(material)
+    _record(node)
     if found is not None and found[0].inputs[found[1]].is_linked:
         imaged = imaged if imaged is not None else image_colour(material)
         set_colour(node, imaged[1] if imaged is not None else core_sand.SAND_COLOR)
+        if imaged is not None:
+            _record(node, material, imaged[0])
         return imaged is not None
     if found is None:
         set_colour(node, core_sand.SAND_COLOR)
@@ -214,18 +234,21 @@ def drive(node, material, imaged=None):
 
 def match(node, tree):
     """The Combine Color node takes what the tree's ground colour takes: the same material's colour
-    followed, else the same fixed colour (an image's mean, or the sand's)."""
-    material = followed(tree)
+    followed, else the same fixed colour (an image's mean, read once; or the sand's)."""
     source = own.node(tree, NODE) if tree is not None else None
-    if material is not None or source is None:
-        drive(node, material)
-    else:
-        set_colour(node, [source.inputs[index].default_value for index in range(3)])
+    driven = drivers.driven_by(tree, NODE)
+    if driven is not None or source is None:
+        drive(node, driven)
+        return
+    set_colour(node, [source.inputs[index].default_value for index in range(3)])
+    _record(node, *(recorded_image(tree) or ()))
 
 
 def followed(tree):
-    """The material the tree's ground colour follows, or None."""
-    return drivers.driven_by(tree, NODE)
+    """The material the tree's ground colour follows (by drivers, or an image's mean), or None."""
+    driven = drivers.driven_by(tree, NODE)
+    recorded = recorded_image(tree)
+    return driven if driven is not None else recorded[0] if recorded is not None else None
 
 
 def _trees(scene):

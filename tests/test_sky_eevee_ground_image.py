@@ -113,6 +113,8 @@ def test_the_ground_takes_the_images_mean_as_cycles_decodes_it(sandscape, tmp_pa
         assert np.max(np.abs(np.array(reference) - decoded_mean_code)) > 0.01
     line = sandscape.operators.atmosphere.report_line(scene, scene.sandscape_atmosphere, done)
     assert f"image '{image.name}'" in line and "Their Meadow" in line
+    panel = sandscape.ui.panels.ground_light_text(scene)
+    assert panel.endswith(f"the mean of image '{image.name}' on 'Their Meadow'")
 
 
 def test_a_large_image_is_read_from_a_scaled_copy_that_is_removed(sandscape, tmp_path, monkeypatch):
@@ -154,6 +156,7 @@ def test_the_clouds_take_the_images_mean_and_a_missing_file_gives_the_sands(sand
     layer = next(o for o in scene.objects if o.get("sandscape_object") == "clouds")
     clouds = tuple(s.default_value for s in layer.active_material.node_tree.nodes[ground.NODE].inputs[:3])
     assert clouds == pytest.approx(meadow, abs=1e-6)
+    assert ground.followed(layer.active_material.node_tree) == bpy.data.materials["Their Meadow"]
     image.filepath = str(tmp_path / "gone.png")
     image.reload()
     done = sandscape.addon.atmosphere.apply(scene, scene.sandscape_atmosphere)
@@ -161,3 +164,4 @@ def test_the_clouds_take_the_images_mean_and_a_missing_file_gives_the_sands(sand
     assert _world_colour(scene) == pytest.approx(core_sand.SAND_COLOR[:3], abs=1e-6)
     line = sandscape.operators.atmosphere.report_line(scene, scene.sandscape_atmosphere, done)
     assert "sand's colour" in line
+    assert sandscape.ui.panels.ground_light_text(scene).endswith("the sand's colour")

@@ -252,7 +252,12 @@ def ground_light_text(scene):
     if followed is None:
         return "EEVEE's light from the ground: the sand's colour"
     found = sky_eevee_ground.colour_input(followed)
-    if found is None or found[0].inputs[found[1]].is_linked:  # a texture linked since
+    socket = found[0].inputs[found[1]] if found is not None else None
+    linked = socket is not None and socket.is_linked
+    recorded = sky_eevee_ground.recorded_image(scene.world.node_tree)
+    if recorded is not None and linked and sky_eevee_ground.image_behind(socket) == recorded[1]:
+        return f"EEVEE's light from the ground: the mean of image '{recorded[1].name}' on '{followed.name}'"
+    if found is None or linked != (recorded is not None):  # a texture linked, or unlinked, since
         return f"EEVEE's light from the ground: '{followed.name}' changed, Add Atmosphere again"
     return f"EEVEE's light from the ground: the colour of '{followed.name}'"
 
