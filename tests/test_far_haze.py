@@ -283,6 +283,7 @@ def _sky_overhead(unit_scale):
     return seen, ~scenes.pixel_hits(scene, camera, 64, 36, (0.0, 0.0, 1.0))["hit"]
 
 
+@pytest.mark.sweep  # 24 s; the centimetre shadows, sunlight and ground stay in make test
 def test_the_clouds_overhead_are_the_same_at_unit_scale_0_01():
     """The far haze's top met the clouds' base: in Cycles a ray could miss the second face and
     never enter the clouds, and at unit scale 0.01 the layer overhead showed only in a wedge of

@@ -97,9 +97,10 @@ def render_sparkling_sand(sandscape, filter_width, seed, samples, glints=True):
     return readback.render(scene)[..., :3]
 
 
-def glint_pixels(sandscape, filter_width, reference_samples=128):
+def glint_pixels(sandscape, filter_width, reference_samples=64):
     """The pixels sparkles change (by over 0.05 in display values, the bare sand's median at 0.5,
-    clipped at 1) in a render of one seed, and that scale."""
+    clipped at 1) in a render of one seed, and that scale. 64 samples find the same pixels as 128
+    (2.8 % of the frame, the noise over them 0.0115 against 0.0114: 2026-12-07)."""
     bare = render_sparkling_sand(sandscape, filter_width, 99, reference_samples, glints=False)
     scale = 0.5 / float(np.median(bare))
     reference = render_sparkling_sand(sandscape, filter_width, 99, reference_samples) * scale
