@@ -300,6 +300,7 @@ def test_the_sky_lights_the_ground_in_eevee_as_in_cycles(eevee_scene, sandscape,
     sandscape.addon.atmosphere.scene_sun(eevee_scene).hide_render = True
     scenes.camera("ORTHO", location=(0.0, 0.0, 10.0), ortho_scale=1.0)
     eevee_scene.cycles.samples, eevee_scene.cycles.max_bounces = 256, 1
+    eevee_scene.render.resolution_x = eevee_scene.render.resolution_y = 16  # the wall's mean
 
     def mean(engine):
         eevee_scene.render.engine = engine
@@ -384,6 +385,7 @@ def test_the_lit_sand_lights_a_wall_in_eevee_as_in_cycles(eevee_scene, sandscape
     assert bpy.ops.sandscape.add_atmosphere() == {"FINISHED"}
     scenes.camera("ORTHO", location=(0.0, -5.0, 1.5), rotation=(math.pi / 2, 0.0, 0.0), ortho_scale=0.8)
     eevee_scene.cycles.samples, eevee_scene.cycles.max_bounces = 256, 1
+    eevee_scene.render.resolution_x = eevee_scene.render.resolution_y = 16  # the wall's mean
     eevee_scene.eevee.clamp_surface_indirect = 0.0  # as the EEVEE presets set it
     eevee_scene.frame_set(eevee_scene.frame_current)  # the ground's light reads the sun
 
