@@ -388,6 +388,7 @@ def clip_warning(scene, box):
     reach = float(np.min(np.concatenate([where[:2] - low[:2], high[:2] - where[:2]])))
     if reach <= 0 or camera.data.clip_end >= reach:
         return None
-    return (f"Camera '{camera.name}' clips at {units.length_text(scene, camera.data.clip_end)}, short of the "
-            f"haze, which reaches {units.length_text(scene, reach)}: past its Clip End it sees the bare sky. "
-            f"Raise its Clip End (Camera ▸ Lens) to {units.length_text(scene, reach)}")
+    clips, reaches = units.distinct_length_texts(scene, [camera.data.clip_end, reach])
+    return (f"Camera '{camera.name}' clips at {clips}, short of the haze, which reaches {reaches}: past its "
+            f"Clip End it sees the bare sky. Raise its Clip End (Camera ▸ Lens) to at least "
+            f"{units.length_text(scene, units.round_up(reach))}")

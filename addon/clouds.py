@@ -299,10 +299,11 @@ def clip_warning(scene, s):
     if camera.data.clip_end >= math.hypot(s["reach"], height):
         return None
     needed = math.hypot(s["reach"], max(abs(s["base"] - z), abs(s["base"] + s["thickness"] - z)))
-    return (f"Camera '{camera.name}' clips at {units.length_text(scene, camera.data.clip_end)}: it sees "
+    clips, away = units.distinct_length_texts(scene, [camera.data.clip_end, height])
+    return (f"Camera '{camera.name}' clips at {clips}: it sees "
             f"{'none' if camera.data.clip_end < height else 'only the nearest part'} of the cloud layer "
-            f"{units.length_text(scene, height)} away. Raise its Clip End (Camera ▸ Lens) to "
-            f"{units.length_text(scene, needed)} to see the clouds out to Reach")
+            f"{away} away. Raise its Clip End (Camera ▸ Lens) to "
+            f"{units.length_text(scene, units.round_up(needed))} to see the clouds out to Reach")
 
 
 def refresh_shadows(scene):

@@ -185,11 +185,16 @@ def set_colour(node, colour):
         node.inputs[index].default_value = colour[index]
 
 
+def colour_image(material):
+    """The image the material's colour comes from (an Image Texture, through reroutes), or None."""
+    found = colour_input(material)
+    return image_behind(found[0].inputs[found[1]]) if found is not None else None
+
+
 def image_colour(material):
     """(image, its mean colour) when the material's colour comes from an image it can read, else
     None."""
-    found = colour_input(material)
-    image = image_behind(found[0].inputs[found[1]]) if found is not None else None
+    image = colour_image(material)
     colour = mean_colour(image) if image is not None else None
     return (image, colour) if colour is not None else None
 
@@ -291,9 +296,9 @@ def set_sun_let_through(scene, share):
 
 def refresh(scene):
     """Point every ground colour in the scene (the world's, the clouds') at ground_material().
-    The material followed, the image whose mean it took (or None), and whether its colour could
-    be read (False: a texture or a node other than an image, or no ground found; the sand's colour
-    stands in)."""
+    The material followed, the image its colour comes from (or None), and whether its colour
+    could be read (False: a texture or a node other than an image, an image without pixels, or no
+    ground found; the sand's colour stands in)."""
     trees = [tree for tree in _trees(scene) if own.node(tree, NODE) is not None]
     world = own.scene_world(scene)
     material = ground_material(scene, followed(world.node_tree) if world is not None else None)
@@ -306,4 +311,4 @@ def refresh(scene):
     share = own.node(world.node_tree, UPRIGHT_SHARE) if world is not None and world.node_tree else None
     if share is not None:  # measured on Physical Sand; any other ground (or none found) as Lambert
         share.outputs[0].default_value = 1.0 if ours else 0.0
-    return material, imaged[0] if imaged is not None else None, read and material is not None
+    return material, colour_image(material), read and material is not None

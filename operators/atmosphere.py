@@ -73,11 +73,15 @@ def ground_part(scene, done):
             return None
         return (f"EEVEE's light from the ground takes the sand's colour: nothing opaque lies below camera "
                 f"'{scene.camera.name}' or ahead of it")
-    if done["ground_read"] and done.get("ground_image") is not None:
-        return (f"EEVEE's light from the ground takes the mean colour of image '{done['ground_image'].name}' "
+    image = done.get("ground_image")
+    if done["ground_read"] and image is not None:
+        return (f"EEVEE's light from the ground takes the mean colour of image '{image.name}' "
                 f"on your '{ground.name}' (run Add Atmosphere again after changing the image)")
     if done["ground_read"]:
         return f"EEVEE's light from the ground takes the colour of your '{ground.name}'"
+    if image is not None:
+        return (f"EEVEE's light from the ground takes the sand's colour: image '{image.name}' on your "
+                f"'{ground.name}' has no pixels to read (is its file missing?)")
     return (f"EEVEE's light from the ground takes the sand's colour: your '{ground.name}' gets its colour "
             "from a texture other than an image, or a shader it cannot read")
 

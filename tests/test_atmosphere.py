@@ -298,6 +298,25 @@ def test_a_camera_that_clips_short_of_the_haze_is_warned():
     warnings = [text for kinds, text in reports if kinds == {"WARNING"}]
     assert result == {"FINISHED"} and len(warnings) == 1, reports
     assert "clips at 100 m, short of the haze" in warnings[0] and "Raise its Clip End" in warnings[0]
+
+    def metres(text):
+        number, unit = text.split()[:2]
+        return float(number) * (1000.0 if unit.startswith("km") else 1.0)
+
+    reach = metres(warnings[0].split("which reaches ")[1])
+    assert metres(warnings[0].rsplit("to at least ", 1)[1]) >= reach > 100.0  # rounded up, never down
     bpy.context.scene.camera.data.clip_end = 50000.0
     result, reports = operators.run_execute("sandscape.add_atmosphere")
     assert result == {"FINISHED"} and not [text for kinds, text in reports if kinds == {"WARNING"}], reports
+
+
+def test_lengths_that_differ_read_differently_and_a_limit_is_rounded_up(sandscape):
+    """A helper's report read "clips at 1 km, short of the haze, which reaches 1 km": lengths that
+    differ get the digits to show it, and the Clip End to raise to is rounded up, past the haze."""
+    units = sandscape.addon.units
+    scene = bpy.context.scene
+    first, second = units.distinct_length_texts(scene, [1000.0, 1004.0])
+    assert first != second and first == "1 km"
+    assert units.distinct_length_texts(scene, [1000.0, 1000.0]) == ["1 km", "1 km"]
+    assert units.round_up(1004.0) == pytest.approx(1100.0) and units.round_up(4600.0) == pytest.approx(4600.0)
+    assert units.round_up(0.0123) == pytest.approx(0.013) and units.round_up(math.inf) == math.inf

@@ -143,8 +143,10 @@ def test_a_large_image_is_read_from_a_scaled_copy_that_is_removed(sandscape, tmp
 
 
 def test_the_clouds_take_the_images_mean_and_a_missing_file_gives_the_sands(sandscape, tmp_path):
-    """Clouds added afterwards take the world's fixed colour; an image whose file is gone gives the
-    sand's colour, and the report says the colour could not be read."""
+    """Clouds added afterwards take the world's fixed colour; another image put in the node is
+    named as a change until the operator runs again (a helper's finding: the sidebar said "the
+    colour of" the material); an image whose file is gone gives the sand's colour, and the report
+    says its image has no pixels."""
     bpy.ops.wm.read_homefile(use_empty=True)
     scene = bpy.context.scene
     scene.render.engine = "BLENDER_EEVEE"
@@ -157,11 +159,20 @@ def test_the_clouds_take_the_images_mean_and_a_missing_file_gives_the_sands(sand
     clouds = tuple(s.default_value for s in layer.active_material.node_tree.nodes[ground.NODE].inputs[:3])
     assert clouds == pytest.approx(meadow, abs=1e-6)
     assert ground.followed(layer.active_material.node_tree) == bpy.data.materials["Their Meadow"]
-    image.filepath = str(tmp_path / "gone.png")
-    image.reload()
+    # Another image in the node: the sidebar says the ground changed until the operator runs again.
+    nodes = bpy.data.materials["Their Meadow"].node_tree.nodes
+    texture = next(node for node in nodes if node.bl_idname == "ShaderNodeTexImage")
+    basalt = np.tile(np.float32([0.1, 0.1, 0.1, 1.0]), SIZE * SIZE)
+    texture.image = _image_file(tmp_path, "Basalt", codes=basalt)
+    assert sandscape.ui.panels.ground_light_text(scene).endswith("changed, Add Atmosphere again")
+    sandscape.addon.atmosphere.apply(scene, scene.sandscape_atmosphere)
+    assert "the mean of image 'Basalt.png'" in sandscape.ui.panels.ground_light_text(scene)
+    assert _world_colour(scene) == pytest.approx((float(image_mean.srgb_to_linear(0.1)),) * 3, abs=1e-3)
+    texture.image.filepath = str(tmp_path / "gone.png")
+    texture.image.reload()
     done = sandscape.addon.atmosphere.apply(scene, scene.sandscape_atmosphere)
     assert not done["ground_read"]
     assert _world_colour(scene) == pytest.approx(core_sand.SAND_COLOR[:3], abs=1e-6)
     line = sandscape.operators.atmosphere.report_line(scene, scene.sandscape_atmosphere, done)
-    assert "sand's colour" in line
+    assert "sand's colour: image 'Basalt.png'" in line and "no pixels" in line
     assert sandscape.ui.panels.ground_light_text(scene).endswith("the sand's colour")

@@ -257,7 +257,7 @@ def ground_light_text(scene):
     recorded = sky_eevee_ground.recorded_image(scene.world.node_tree)
     if recorded is not None and linked and sky_eevee_ground.image_behind(socket) == recorded[1]:
         return f"EEVEE's light from the ground: the mean of image '{recorded[1].name}' on '{followed.name}'"
-    if found is None or linked != (recorded is not None):  # a texture linked, or unlinked, since
+    if found is None or linked or recorded is not None:  # a texture or another image linked, or unlinked
         return f"EEVEE's light from the ground: '{followed.name}' changed, Add Atmosphere again"
     return f"EEVEE's light from the ground: the colour of '{followed.name}'"
 
