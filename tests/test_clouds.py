@@ -70,6 +70,7 @@ def test_coverage_is_the_share_of_sky_under_cloud(seed, coverages):
         assert share == pytest.approx(coverage, abs=COVERAGE_TOLERANCE), covered
 
 
+@pytest.mark.sweep  # 16 s; test_cloud_grid.py's grid-equals-procedural check at voxel centres stays
 def test_grid_and_procedural_cover_the_same_sky_off_the_defaults():
     """Denser and thinner than the defaults: the voxel grid and the procedural layer put the same
     share of sky under cloud (the issue's 0.02), and that share is still the Coverage (0.05)."""
