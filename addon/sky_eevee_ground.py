@@ -215,14 +215,17 @@ def recorded_image(tree):
     return (node.get(FOLLOWED_KEY), image) if image is not None else None
 
 
-def drive(node, material, imaged=None):
+_NOT_READ = object()  # drive(): the image not read yet (None: read, and nothing to take from it)
+
+
+def drive(node, material, imaged=_NOT_READ):
     """Drive the Combine Color node's channels from the material's colour input; where that is
-    linked, the mean of its image (imaged: image_colour(material), if known), else the sand's
-    colour, fixed. Whether it took the material's colour."""
+    linked, the mean of its image (imaged: image_colour(material), if already read), else the
+    sand's colour, fixed. Whether it took the material's colour."""
     found = colour_input(material)
     _record(node)
     if found is not None and found[0].inputs[found[1]].is_linked:
-        imaged = imaged if imaged is not None else image_colour(material)
+        imaged = image_colour(material) if imaged is _NOT_READ else imaged
         set_colour(node, imaged[1] if imaged is not None else core_sand.SAND_COLOR)
         if imaged is not None:
             _record(node, material, imaged[0])
