@@ -12,7 +12,8 @@ ground, so level sand gets the sky's light as in Cycles, changed by the cloud la
 scattered sunlight in, the sky it hides out: sky_eevee_clouds.py), with the lamp's light the
 dust box's haze scatters down added where it comes from (sky_eevee_haze.py); below, the lit
 sand's, which lights a walker's legs and the undersides of things as the sand's bounce does in
-Cycles (EEVEE bounces none without a baked probe).
+Cycles (EEVEE bounces none without a baked probe); on our sand with its upright gain and a lobe
+toward the side turned from the sun, which a backlit face sees glow (core/eevee_upright.py).
 
 Both follow the scene's sun lamp through simple-expression drivers (its axis, strength and
 colour), with the sky's irradiance at that elevation from core/sun_table.py in an RGB Curves
