@@ -134,6 +134,12 @@ def ground_material(scene, followed=None):
 
 def image_behind(socket):
     """The image an Image Texture node's Color gives the socket (through reroutes), or None."""
+    node = image_node_behind(socket)
+    return node.image if node is not None else None
+
+
+def image_node_behind(socket):
+    """The Image Texture node whose Color gives the socket (through reroutes), or None."""
     for _ in range(HITS):
         if not socket.is_linked:
             return None
@@ -143,7 +149,7 @@ def image_behind(socket):
             socket = node.inputs[0]
             continue
         if node.bl_idname == "ShaderNodeTexImage" and link.from_socket.name == "Color":
-            return node.image
+            return node
         return None
     return None
 
@@ -155,8 +161,20 @@ def _decoded_as_srgb(image):
     return not (image.is_float or space.is_data or "Linear" in space.name or "ACES" in space.name)
 
 
-def mean_colour(image):
-    """The image's mean colour in linear light, or None when it has no pixels (a missing file)."""
+def _associated(node):
+    """Whether the node's Color is its byte image's colour times its alpha, as Cycles gives it: a
+    straight-alpha byte image in a colour space, the node's Alpha output unused (used, the colour
+    is given unassociated). Float images and other alpha modes are taken as their pixels hold
+    them (not compared with Cycles)."""
+    image = node.image
+    return (image is not None and image.channels == 4 and not image.is_float
+            and image.alpha_mode == "STRAIGHT" and not image.colorspace_settings.is_data
+            and not node.outputs["Alpha"].is_linked)
+
+
+def mean_colour(image, associated=False):
+    """The image's mean colour in linear light, or None when it has no pixels (a missing file);
+    associated: its colour times its alpha (_associated)."""
     width, height = image.size
     if width * height == 0:
         return None
@@ -175,7 +193,7 @@ def mean_colour(image):
             bpy.data.images.remove(source)
     if len(pixels) == 0:
         return None
-    return image_mean.mean_colour(pixels, image.channels, _decoded_as_srgb(image))
+    return image_mean.mean_colour(pixels, image.channels, _decoded_as_srgb(image), associated)
 
 
 def set_colour(node, colour):
@@ -187,15 +205,21 @@ def set_colour(node, colour):
 
 def colour_image(material):
     """The image the material's colour comes from (an Image Texture, through reroutes), or None."""
+    node = _colour_image_node(material)
+    return node.image if node is not None else None
+
+
+def _colour_image_node(material):
     found = colour_input(material)
-    return image_behind(found[0].inputs[found[1]]) if found is not None else None
+    return image_node_behind(found[0].inputs[found[1]]) if found is not None else None
 
 
 def image_colour(material):
     """(image, its mean colour) when the material's colour comes from an image it can read, else
     None."""
-    image = colour_image(material)
-    colour = mean_colour(image) if image is not None else None
+    node = _colour_image_node(material)
+    image = node.image if node is not None else None
+    colour = mean_colour(image, _associated(node)) if image is not None else None
     return (image, colour) if colour is not None else None
 
 

@@ -72,8 +72,9 @@ def _world_colour(scene):
     return tuple(socket.default_value for socket in scene.world.node_tree.nodes[ground.NODE].inputs[:3])
 
 
-def _cycles_mean(image):
-    """Cycles' own decoding of the image: its texels baked through an Emission at their centres."""
+def _cycles_mean(image, alpha_used=False):
+    """Cycles' own decoding of the image: its texels baked through an Emission at their centres;
+    alpha_used: with the node's Alpha output used too (by a Greater Than giving the Strength 1)."""
     plane = readback.uv_plane(name="Decode Plane")
     material = bpy.data.materials.new("Decode")
     tree = material.node_tree
@@ -82,6 +83,11 @@ def _cycles_mean(image):
     texture.image, texture.interpolation = image, "Closest"
     output = tree.nodes.new("ShaderNodeOutputMaterial")
     tree.links.new(texture.outputs["Color"], emission.inputs["Color"])
+    if alpha_used:
+        one = tree.nodes.new("ShaderNodeMath")
+        one.operation, one.inputs[1].default_value = "GREATER_THAN", -1.0
+        tree.links.new(texture.outputs["Alpha"], one.inputs[0])
+        tree.links.new(one.outputs[0], emission.inputs["Strength"])
     tree.links.new(emission.outputs[0], output.inputs["Surface"])
     plane.data.materials.append(material)
     baked = readback.bake_emit(plane, material, SIZE)
@@ -176,3 +182,38 @@ def test_the_clouds_take_the_images_mean_and_a_missing_file_gives_the_sands(sand
     line = sandscape.operators.atmosphere.report_line(scene, scene.sandscape_atmosphere, done)
     assert "sand's colour: image 'Basalt.png'" in line and "no pixels" in line
     assert sandscape.ui.panels.ground_light_text(scene).endswith("the sand's colour")
+
+
+def _codes_with_alpha():
+    codes = _codes().reshape(SIZE, SIZE, 4)
+    codes[..., 3] = np.random.default_rng(3).uniform(0.05, 1.0, (SIZE, SIZE))
+    return codes.ravel()
+
+
+@pytest.mark.parametrize("alpha_used", [False, True])
+def test_an_image_with_alpha_gives_its_colour_as_cycles_shades_it(sandscape, tmp_path, alpha_used):
+    """An 8-bit PNG with straight alpha (0.05-1, mean 0.52) on the ground's Base Color: with the
+    node's Alpha output unused Cycles shades its colour times its alpha (the codes premultiplied,
+    then decoded), and the ground takes that mean (within 1e-3 of the bake); with the Alpha used
+    (a cut-out's Principled Alpha) the colour alone (within 1e-2: Cycles takes the alpha off
+    again in 8 bits). The two differ by far more, so the test tells them apart."""
+    bpy.ops.wm.read_homefile(use_empty=True)
+    scene = bpy.context.scene
+    source = bpy.data.images.new("Cut-out Source", SIZE, SIZE, alpha=True)
+    source.pixels.foreach_set(_codes_with_alpha())
+    source.filepath_raw, source.file_format = str(tmp_path / "cutout.png"), "PNG"
+    source.save()
+    bpy.data.images.remove(source)
+    image = bpy.data.images.load(str(tmp_path / "cutout.png"), check_existing=False)
+    assert image.alpha_mode == "STRAIGHT" and image.channels == 4
+    reference, other = _cycles_mean(image, alpha_used), _cycles_mean(image, not alpha_used)
+    _obj, material = _textured_ground(image)
+    if alpha_used:
+        nodes = material.node_tree.nodes
+        texture = next(node for node in nodes if node.bl_idname == "ShaderNodeTexImage")
+        material.node_tree.links.new(texture.outputs["Alpha"], nodes["Principled BSDF"].inputs["Alpha"])
+    sandscape.addon.atmosphere.apply(scene, scene.sandscape_atmosphere)
+    colour = _world_colour(scene)
+    print(f"alpha used {alpha_used}: ground {np.round(colour, 4)}, Cycles {np.round(reference, 4)}")
+    assert colour == pytest.approx(reference, abs=1e-2 if alpha_used else 1e-3)
+    assert np.max(np.abs(np.array(other) - reference)) > 0.05
