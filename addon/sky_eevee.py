@@ -12,8 +12,7 @@ ground, so level sand gets the sky's light as in Cycles, changed by the cloud la
 scattered sunlight in, the sky it hides out: sky_eevee_clouds.py), with the lamp's light the
 dust box's haze scatters down added where it comes from (sky_eevee_haze.py); below, the lit
 sand's, which lights a walker's legs and the undersides of things as the sand's bounce does in
-Cycles (EEVEE bounces none without a baked probe); on our sand with its upright gain and a lobe
-toward the side turned from the sun, which a backlit face sees glow (core/eevee_upright.py).
+Cycles (EEVEE bounces none without a baked probe).
 
 Both follow the scene's sun lamp through simple-expression drivers (its axis, strength and
 colour), with the sky's irradiance at that elevation from core/sun_table.py in an RGB Curves
@@ -40,10 +39,6 @@ CLAMP = "Sandscape EEVEE Clamp"
 # The ground's light on upright things as our sand gives it (core/eevee_upright.py), by the sun's
 # elevation; sky_eevee_ground's share says how much of it applies (1 on our sand).
 UPRIGHT_GAIN = "Sandscape EEVEE Sand Upright Gain"
-# Our sand seen from a backlit face is brighter than edge-on (core.eevee_upright.BACKLIT_ROWS): the
-# lower hemisphere's lobe toward the side turned from the sun, by the sun's elevation.
-BACKLIT_LOBE = "Sandscape EEVEE Sand Backlit Lobe"
-BACKLIT_LOBE_OURS = "Sandscape EEVEE Sand Backlit Lobe Where Ours"
 CLAMP_EXPRESSION = "limit if limit > 0 else 1e9"  # 0: EEVEE clamps nothing
 DISC, DISC_EDGE = "Sandscape EEVEE Sun Disc", "Sandscape EEVEE Sun Disc Edge"
 DISC_EDGE_EXPRESSION = "angle / 2"
@@ -58,7 +53,7 @@ def build(tree, ray, shown):
     axes = h.add_node(tree, "ShaderNodeSeparateXYZ")
     h.link(tree, direction.outputs["Generated"], axes.inputs[0])
     above = h.math(tree, "GREATER_THAN", axes.outputs["Z"], 0.0, label="Above the Horizon")
-    sky, ground, sun_unit, sun_light, height, share = _level_light(tree)
+    sky, ground, sun_unit, sun_light = _level_light(tree)
     # The ground held within the contrast EEVEE keeps without deringing (the sky stays exact).
     ratio = air.eevee_ground_ratio(compat.eevee_dering_limit())
     floor = h.add_node(tree, "ShaderNodeVectorMath", operation="SCALE", inputs={"Scale": 1 / ratio})
@@ -80,10 +75,9 @@ def build(tree, ray, shown):
                      inputs={1: (air.EEVEE_CLAMP_SKY_SHARE,) * 3})
     h.link(tree, sky, cap.inputs[0])
     h.link(tree, clamp.outputs[0], cap.inputs[2])
-    lobed = _backlit_lobe(tree, direction.outputs["Generated"], sun_unit, height, share, held.outputs[0])
     below = h.add_node(tree, "ShaderNodeVectorMath", operation="MINIMUM",
                        name="Sandscape EEVEE Light from Below")
-    h.link(tree, lobed, below.inputs[0])
+    h.link(tree, held.outputs[0], below.inputs[0])
     h.link(tree, cap.outputs[0], below.inputs[1])
     hemispheres = h.add_node(tree, "ShaderNodeMix", name="Sandscape EEVEE Two Hemispheres", data_type="RGBA")
     h.link(tree, above.outputs[0], hemispheres.inputs["Factor"])
@@ -143,52 +137,22 @@ def _level_light(tree):
     h.link(tree, color.outputs[0], ground.inputs[1])
     upright = h.add_node(tree, "ShaderNodeVectorMath", operation="MULTIPLY", label="× Upright Gain")
     h.link(tree, ground.outputs[0], upright.inputs[0])
-    share = sky_eevee_ground.upright_share_node(tree)
-    h.link(tree, _upright_gain(tree, height.outputs[0], share), upright.inputs[1])
-    return sky, upright.outputs[0], sun_unit, light.outputs[0], height.outputs[0], share.outputs[0]
+    h.link(tree, _upright_gain(tree, height.outputs[0]), upright.inputs[1])
+    return sky, upright.outputs[0], sun_unit, light.outputs[0]
 
 
-def _upright_gain(tree, height, share):
+def _upright_gain(tree, height):
     """Our sand's gain on the ground's light (core/eevee_upright.py) by the sine of the sun's
     elevation, mixed from 1 by the share of it the ground takes (sky_eevee_ground.upright_share_node)."""
     degrees, gains = eevee_upright.rows()
     gain = table_curve(tree, height, np.sin(np.radians(degrees)), gains, UPRIGHT_GAIN,
                        "Sand's Upright Gain ÷ Its Peak")
+    share = sky_eevee_ground.upright_share_node(tree)
     mix = h.add_node(tree, "ShaderNodeMix", data_type="RGBA", label="Upright Gain Where the Ground Is Ours")
     h.link(tree, share.outputs[0], mix.inputs["Factor"])
     h.socket(mix.inputs, "A").default_value = (1.0, 1.0, 1.0, 1.0)
     h.link(tree, gain, h.socket(mix.inputs, "B"))
     return h.socket(mix.outputs, "Result")
-
-
-def _backlit_lobe(tree, view, sun_unit, height, share, below):
-    """The lower hemisphere's radiance `below` times 1 + lobe x (the view's horizontal part along
-    the sun's horizontal opposite): brighter where a backlit face looks, as much darker toward the
-    sun, the same on the whole (level sand and edge-on faces keep their light). The lobe is our
-    sand's (core.eevee_upright.BACKLIT_ROWS) times the share of it the ground takes."""
-    degrees, lobes = eevee_upright.rows(eevee_upright.BACKLIT_ROWS)
-    lobe = table_curve(tree, height, np.sin(np.radians(degrees)), lobes, BACKLIT_LOBE,
-                       "Sand's Backlit Lobe ÷ Its Peak")
-    ours = h.add_node(tree, "ShaderNodeVectorMath", operation="SCALE", name=BACKLIT_LOBE_OURS,
-                      label="Lobe Where the Ground Is Ours")
-    h.link(tree, lobe, ours.inputs[0])
-    h.link(tree, share, ours.inputs["Scale"])
-    away = h.add_node(tree, "ShaderNodeVectorMath", operation="MULTIPLY", inputs={1: (-1.0, -1.0, 0.0)},
-                      label="Away from the Sun, Level")
-    h.link(tree, sun_unit, away.inputs[0])
-    unit = h.add_node(tree, "ShaderNodeVectorMath", operation="NORMALIZE")  # (0, 0, 0) under a zenith sun
-    h.link(tree, away.outputs[0], unit.inputs[0])
-    along = h.add_node(tree, "ShaderNodeVectorMath", operation="DOT_PRODUCT")
-    h.link(tree, view, along.inputs[0])
-    h.link(tree, unit.outputs[0], along.inputs[1])
-    factor = h.add_node(tree, "ShaderNodeVectorMath", operation="MULTIPLY_ADD", inputs={2: (1.0, 1.0, 1.0)},
-                        label="1 + Lobe × Along")
-    h.link(tree, ours.outputs[0], factor.inputs[0])
-    h.link(tree, along.outputs["Value"], factor.inputs[1])
-    lobed = h.add_node(tree, "ShaderNodeVectorMath", operation="MULTIPLY", label="Ground × Backlit Lobe")
-    h.link(tree, below, lobed.inputs[0])
-    h.link(tree, factor.outputs[0], lobed.inputs[1])
-    return lobed.outputs[0]
 
 
 def _with_disc(tree, view, sun, light, shown):

@@ -88,24 +88,20 @@ def eevee_ground_ratio(limit):
     return (1 + limit * EEVEE_DERING_MARGIN) / (1 - limit * EEVEE_DERING_MARGIN)
 
 
-def eevee_world_irradiance(above, below, normal_z, limit, clamp=0.0, lobe=0.0, normal_away=0.0):
+def eevee_world_irradiance(above, below, normal_z, limit, clamp=0.0):
     """Irradiance EEVEE gives a normal with up component normal_z under a world of two uniform
     hemispheres whose irradiance on level ground from above and from below is `above` and
     `below` (R, G, B): the first band (above + below)/2, the second (above - below)/2 along z,
-    derung as EEVEE does (one factor for every channel and axis), then all scaled down where the
-    bands' brightest radiance, mean + 1.5 |tilt| over pi, passes the scene's Clamp Surface
-    Indirect (0: off). With a lobe, the lower hemisphere's radiance is times 1 + lobe x (the
-    direction's part along a level axis): its second band below x lobe / 3 along that axis, which
-    gives a normal with normal_away along it that much more."""
+    derung as EEVEE does (one factor for every channel), then all scaled down where the bands'
+    brightest radiance, mean + 1.5 |tilt| over pi, passes the scene's Clamp Surface Indirect
+    (0: off)."""
     above, below = np.asarray(above, np.float64), np.asarray(below, np.float64)
     mean, tilt = (above + below) / 2, (above - below) / 2
-    level = below * np.asarray(lobe, np.float64) / 3
-    share = np.maximum(np.abs(tilt), np.abs(level)) / np.maximum(mean, 1e-12)
-    derung = min(1.0, limit / max(float(share.max()), 1e-12))
-    tilt, level = tilt * derung, level * derung
+    share = np.abs(tilt) / np.maximum(mean, 1e-12)
+    tilt = tilt * min(1.0, limit / max(float(share.max()), 1e-12))
     brightest = float(np.max(mean + 1.5 * np.abs(tilt))) / np.pi
     scale = min(1.0, clamp / brightest) if clamp > 0 and brightest > 0 else 1.0
-    return np.maximum(mean + tilt * normal_z + level * normal_away, 0.0) * scale
+    return np.maximum(mean + tilt * normal_z, 0.0) * scale
 
 
 def eevee_world_hemispheres(sky, ground, limit, clamp=0.0):

@@ -14,13 +14,6 @@ plane of Physical Sand, edge-on to the sun, in Cycles (two bounces) and in EEVEE
 the world's lower hemisphere. With C, E and E0 those three, the lower hemisphere times
 (C - E0) / (E - E0) gives the wall Cycles' light. It folds the horizon's light in too, so it is a
 calibration for walls on our sand, per channel, by the sun's elevation.
-
-A wall turned from the sun (a backlit walker's face toward the camera) sees our sand brighter
-still: the sand looked at with the sun behind the eye sends back more (opposition), and more so
-in red under a low sun. Two bands can hold that only as a lobe, the ground brighter on the side
-turned from the sun and as much darker toward it (BACKLIT_ROWS, from the same wall turned with
-its back to the sun); a wall facing the sun is lit by the sun itself, which that shift barely
-changes.
 """
 
 import numpy as np
@@ -38,25 +31,6 @@ ROWS = (
 )
 
 
-# (sun elevation in degrees, lobe R, G, B): the lower hemisphere's radiance times 1 + lobe x (the
-# direction's horizontal part along the sun's horizontal opposite), from the backlit wall.
-BACKLIT_ROWS = (
-    (3.0, 0.240, 0.181, 0.192),
-    (6.0, 0.501, 0.349, 0.236),
-    (10.0, 0.733, 0.562, 0.282),
-    (15.0, 0.709, 0.543, 0.333),
-    (25.0, 0.498, 0.400, 0.216),
-    (40.0, 0.265, 0.204, 0.085),
-    (60.0, 0.077, 0.068, 0.000),
-    (80.0, 0.038, 0.032, 0.006),
-)
-
-# The lobe's largest value: at 1 the lower hemisphere's radiance reaches 0 toward the sun. Its
-# second band along that axis is then at most 2/3 x below / (above + below) of the first, inside
-# 5.0's deringing limit (2/3, core.atmosphere) while the ground is held within its ratio.
-LOBE_CAP = 1.0
-
-
 def measured_gain(cycles, eevee, no_ground):
     """The gain on the lower hemisphere that brings EEVEE's wall (`eevee`; `no_ground` without the
     lower hemisphere) to Cycles' (`cycles`), per channel."""
@@ -64,35 +38,15 @@ def measured_gain(cycles, eevee, no_ground):
     return (cycles - no_ground) / np.maximum(eevee - no_ground, 1e-12)
 
 
-def lobe_from_gains(edge, backlit):
-    """The lobe that gives a backlit wall its gain (`backlit`) where an edge-on wall's is `edge`.
-
-    EEVEE lights a wall from the world's first two bands: the lower hemisphere of radiance G
-    gives an upright face pi G / 2, and G x lobe x cos(azimuth from the face) adds pi G lobe / 3
-    on the face turned from the sun (its share 2/3 lobe) and takes as much from one facing it;
-    an edge-on face gets none. So 1 + 2/3 lobe = backlit / edge; held within [0, LOBE_CAP]."""
-    edge, backlit = np.asarray(edge, np.float64), np.asarray(backlit, np.float64)
-    return np.clip(1.5 * (backlit / edge - 1.0), 0.0, LOBE_CAP)
-
-
-def rows(table=ROWS):
-    """(elevations in degrees, values (N, 3)) of ROWS (gains) or BACKLIT_ROWS (lobes)."""
-    table = np.array(table, np.float64)
+def rows():
+    """(elevations in degrees, gains (N, 3))."""
+    table = np.array(ROWS, np.float64)
     return table[:, 0], table[:, 1:]
 
 
 def gain(elevation):
     """The gain (R, G, B) at a sun elevation in radians: linear between the rows, the end rows'
     beyond them."""
-    return _at(ROWS, elevation)
-
-
-def lobe(elevation):
-    """The backlit lobe (R, G, B) at a sun elevation in radians, as gain() reads its rows."""
-    return _at(BACKLIT_ROWS, elevation)
-
-
-def _at(table, elevation):
-    degrees, values = rows(table)
+    degrees, gains = rows()
     at = np.clip(np.degrees(float(elevation)), degrees[0], degrees[-1])
-    return np.array([np.interp(at, degrees, column) for column in values.T])
+    return np.array([np.interp(at, degrees, column) for column in gains.T])

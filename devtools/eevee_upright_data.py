@@ -3,16 +3,12 @@ and print core.eevee_upright's rows (paste them into core/eevee_upright.py).
 
 A plane of Physical Sand 400 m across under Add Atmosphere's sun and sky (dust off: its box
 veils the wall differently in each engine), a grey Lambert wall 2 m square standing 0.5 m above
-it, seen square-on through an orthographic camera; the wall's linear mean in Cycles (256 spp,
-two bounces), in EEVEE, and in EEVEE with the world's lower hemisphere zeroed. The world's upright
-gain is taken out for the measurement (its share set to 0). Two walls: edge-on to the sun (the
-gain, core.eevee_upright.ROWS) and backlit, its face turned from the sun (the lobe toward the
-sunlit side, BACKLIT_ROWS); the backlit wall casts no shadow, which would darken the sand its
-face sees as a walker's thin shadow does not.
+it, edge-on to the sun, seen square-on through an orthographic camera; the wall's linear mean in
+Cycles (256 spp, two bounces), in EEVEE, and in EEVEE with the world's lower hemisphere zeroed.
+The world's upright gain is taken out for the measurement (its share set to 0).
 
 Run: .venv/bin/python devtools/eevee_upright_data.py [--json OUT] [--elevations 3 6 ...]
-[--walls edge backlit] (devtools/eevee_upright.json holds the measurements the rows were taken
-from; with --json on an existing file the walls measured replace theirs in it).
+(devtools/eevee_upright.json holds the measurements the rows were taken from.)
 """
 
 import argparse
@@ -30,8 +26,6 @@ sys.path.insert(0, str(REPO))
 from core import eevee_upright as twin  # noqa: E402
 
 ELEVATIONS = (3, 6, 10, 15, 25, 40, 60, 80)
-# The sun's azimuth for each wall (its face looks along -Y: azimuth 0 puts the sun behind it).
-WALLS = {"edge": math.pi / 2, "backlit": 0.0}
 
 
 def wall_scene():
@@ -84,12 +78,7 @@ def _without_ground(tree):
         tree.nodes.remove(zero)
 
 
-def wall(scene):
-    return next(o for o in scene.objects if o.type == "MESH" and o.location.z > 1.0)
-
-
-def measure(elevations, walls=tuple(WALLS)):
-    """Per elevation {"elevation": ..., wall: {"cycles", "eevee", "eevee_no_ground"}, ...}."""
+def measure(elevations):
     bpy, readback, sandscape, scene = wall_scene()
     ground = sandscape.addon.sky_eevee_ground
 
@@ -99,60 +88,35 @@ def measure(elevations, walls=tuple(WALLS)):
 
     settings, rows = scene.sandscape_atmosphere, []
     for elevation in elevations:
-        row = {"elevation": elevation}
-        for name in walls:
-            settings.sun_elevation, settings.sun_azimuth = math.radians(elevation), WALLS[name]
-            wall(scene).visible_shadow = name != "backlit"
-            scene.render.engine = "CYCLES"
-            assert bpy.ops.sandscape.add_atmosphere() == {"FINISHED"}
-            scene.frame_set(scene.frame_current)  # the world's drivers read the sun
-            tree = scene.world.node_tree
-            tree.nodes[ground.UPRIGHT_SHARE].outputs[0].default_value = 0.0  # against the Lambert ground
-            cycles, eevee = mean("CYCLES"), mean("BLENDER_EEVEE")
-            with _without_ground(tree):
-                no_ground = mean("BLENDER_EEVEE")
-            row[name] = {"cycles": cycles.tolist(), "eevee": eevee.tolist(),
-                         "eevee_no_ground": no_ground.tolist()}
-            print(elevation, name, row[name], "gain", twin.measured_gain(cycles, eevee, no_ground).round(3),
-                  flush=True)
+        settings.sun_elevation, settings.sun_azimuth = math.radians(elevation), math.pi / 2
+        scene.render.engine = "CYCLES"
+        assert bpy.ops.sandscape.add_atmosphere() == {"FINISHED"}
+        scene.frame_set(scene.frame_current)  # the world's drivers read the sun
+        tree = scene.world.node_tree
+        tree.nodes[ground.UPRIGHT_SHARE].outputs[0].default_value = 0.0  # against the Lambert ground
+        cycles, eevee = mean("CYCLES"), mean("BLENDER_EEVEE")
+        with _without_ground(tree):
+            no_ground = mean("BLENDER_EEVEE")
+        row = {"elevation": elevation, "cycles": cycles.tolist(), "eevee": eevee.tolist(),
+               "eevee_no_ground": no_ground.tolist()}
+        print(row, "gain", twin.measured_gain(cycles, eevee, no_ground).round(3), flush=True)
         rows.append(row)
     return rows
-
-
-def merged(old, new):
-    """The rows of `old` with the walls measured in `new` replaced (rows matched by elevation)."""
-    by_elevation = {row["elevation"]: dict(row) for row in old}
-    for row in new:
-        by_elevation.setdefault(row["elevation"], {}).update(row)
-    return [by_elevation[e] for e in sorted(by_elevation)]
-
-
-def gains(row, name="edge"):
-    return twin.measured_gain(row[name]["cycles"], row[name]["eevee"], row[name]["eevee_no_ground"])
 
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--json", type=pathlib.Path, help="write the measurements here")
     parser.add_argument("--elevations", type=float, nargs="+", default=list(ELEVATIONS))
-    parser.add_argument("--walls", nargs="+", choices=list(WALLS), default=list(WALLS))
     args = parser.parse_args(argv)
-    rows = measure(args.elevations, args.walls)
+    rows = measure(args.elevations)
     if args.json:
-        if args.json.exists():
-            rows = merged(json.loads(args.json.read_text()), rows)
         args.json.write_text(json.dumps(rows, indent=1) + "\n")
-    for name, table, value in (("edge", "ROWS", gains), ("backlit", "BACKLIT_ROWS", backlit_lobe)):
-        print(f"{table} = (")
-        for row in rows:
-            if name in row and "edge" in row:
-                values = ", ".join(f"{v:.3f}" for v in value(row))
-                print(f"    ({row['elevation']:.1f}, {values}),")
-        print(")")
-
-
-def backlit_lobe(row):
-    return twin.lobe_from_gains(gains(row, "edge"), gains(row, "backlit"))
+    print("ROWS = (")
+    for row in rows:
+        gain = twin.measured_gain(row["cycles"], row["eevee"], row["eevee_no_ground"])
+        print(f"    ({row['elevation']:.1f}, " + ", ".join(f"{g:.3f}" for g in gain) + "),")
+    print(")")
 
 
 if __name__ == "__main__":

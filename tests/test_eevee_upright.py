@@ -1,8 +1,7 @@
 """Upright things standing on our sand in EEVEE (core/eevee_upright.py, addon/sky_eevee.py): the
 world's light from below takes Physical Sand's gain on a Lambert ground by the sun's elevation,
-and its lobe toward the side turned from the sun, so a wall or a walker's shaded side gets the
-light Cycles gives it, edge-on to the sun or backlit; an artist's ground keeps the Lambert
-ground's light."""
+so a wall or a walker's shaded back gets the light Cycles gives it; an artist's ground keeps the
+Lambert ground's light."""
 
 import importlib
 import json
@@ -23,15 +22,14 @@ WITHOUT_GAIN_OFF = 2 * TOLERANCE  # without the gain the same wall is off by mor
 CAPPED_RED = 0.40  # 5.0's red, where its deringing caps the sand's light (tests/test_eevee.py)
 
 
-def test_the_tables_are_the_measurements():
-    """core.eevee_upright's rows are the committed measurements' gains and lobes (rounded to 1e-3)."""
+def test_the_table_is_the_measurements():
+    """core.eevee_upright's rows are the committed measurements' gains (rounded to 1e-3)."""
     rows = json.loads(MEASUREMENTS.read_text())
-    tables = ((twin.ROWS, eevee_upright_data.gains), (twin.BACKLIT_ROWS, eevee_upright_data.backlit_lobe))
-    for table, value in tables:
-        degrees, values = twin.rows(table)
-        assert list(degrees) == [row["elevation"] for row in rows]
-        for row, expected in zip(rows, values, strict=True):
-            assert value(row) == pytest.approx(expected, abs=6e-4)
+    degrees, gains = twin.rows()
+    assert list(degrees) == [row["elevation"] for row in rows]
+    for row, gain in zip(rows, gains, strict=True):
+        measured = twin.measured_gain(row["cycles"], row["eevee"], row["eevee_no_ground"])
+        assert measured == pytest.approx(gain, abs=6e-4)
 
 
 def test_the_gain_is_linear_between_rows_and_held_beyond():
@@ -67,28 +65,24 @@ def test_the_gain_applies_on_physical_sand_only():
     assert _share(scene) == 0.0
 
 
-SWEEP = [pytest.param(elevation, "edge", marks=pytest.mark.sweep) for elevation in (30.0, 70.0)]
+SWEEP = [pytest.param(elevation, marks=pytest.mark.sweep) for elevation in (30.0, 70.0)]
 
 
-@pytest.mark.parametrize("elevation,wall", [(12.0, "edge"), (12.0, "backlit"), *SWEEP])
-def test_a_wall_on_physical_sand_is_lit_in_eevee_as_in_cycles(eevee_scene, sandscape, elevation, wall):
+@pytest.mark.parametrize("elevation", [12.0, *SWEEP])
+def test_a_wall_on_physical_sand_is_lit_in_eevee_as_in_cycles(eevee_scene, sandscape, elevation):
     """The calibration's wall (devtools/eevee_upright_data.py) under a sun between the table's
-    rows, edge-on to the sun or backlit: EEVEE within TOLERANCE of Cycles per channel, and off by
-    more than WITHOUT_GAIN_OFF without the gain (edge-on) or without the lobe (backlit). When
-    written on 5.2 (R/G/B): edge-on, 12 degrees +1.5/+0.1/-1.2 %, without the gain
+    rows: EEVEE within TOLERANCE of Cycles per channel, and off by more than WITHOUT_GAIN_OFF
+    without the gain. When written on 5.2 (R/G/B): 12 degrees +1.5/+0.1/-1.2 %, without the gain
     -26.3/-29.8/-28.1 %; 30 degrees +1.3/+0.2/+0.2 % (-1.3/-11.0/-19.2 %); 70 degrees
     -0.8/-0.6/-1.3 % (+34.4/+19.7/+1.1 %: under a high sun the sand sends less light sideways
-    than a Lambert ground); backlit, 12 degrees -1.4/-1.5/-2.0 % (without the lobe
-    -29.8/-21.8/-12.3 %). On 5.0 green and blue as on 5.2, the
-    red held by its deringing (the ground at most 4.8 times the sky): edge-on -11.5 % at 12 degrees
-    (-27.3 % without), -31.1 % and -36.3 % at 30 and 70 (the same without); backlit -14.9 % in red,
-    -2.6/-3.0 % (-38.8/-22.6/-13.1 % without)."""
+    than a Lambert ground). On 5.0 green and blue as on 5.2, the red held by its deringing (the
+    ground at most 4.8 times the sky): -11.5 % at 12 degrees (-27.3 % without), -31.1 % and -36.3 %
+    at 30 and 70 (the same without)."""
     scene = eevee_upright_data.build_wall(eevee_scene)
     scene.render.resolution_x = scene.render.resolution_y = 16  # the wall's mean: few pixels do
     scene.cycles.samples = 128
-    eevee_upright_data.wall(scene).visible_shadow = wall != "backlit"
     settings = scene.sandscape_atmosphere
-    settings.sun_elevation, settings.sun_azimuth = math.radians(elevation), eevee_upright_data.WALLS[wall]
+    settings.sun_elevation, settings.sun_azimuth = math.radians(elevation), math.pi / 2
     assert bpy.ops.sandscape.add_atmosphere() == {"FINISHED"}
     scene.frame_set(scene.frame_current)
 
@@ -97,18 +91,12 @@ def test_a_wall_on_physical_sand_is_lit_in_eevee_as_in_cycles(eevee_scene, sands
         return readback.render(scene)[..., :3].astype(np.float64).mean((0, 1))
 
     cycles, eevee = mean("CYCLES"), mean("BLENDER_EEVEE")
-    tree = scene.world.node_tree
-    if wall == "backlit":  # the gain kept, the lobe taken out
-        lobe = tree.nodes[sandscape.addon.sky_eevee.BACKLIT_LOBE_OURS].inputs["Scale"]
-        tree.links.remove(lobe.links[0])
-        lobe.default_value = 0.0
-    else:
-        tree.nodes[ground.UPRIGHT_SHARE].outputs[0].default_value = 0.0
-    without = mean("BLENDER_EEVEE")
-    print(f"{wall} wall on Physical Sand, sun {elevation:g}°: EEVEE/Cycles {(eevee / cycles - 1).round(3)}, "
-          f"without the {'lobe' if wall == 'backlit' else 'gain'} {(without / cycles - 1).round(3)}")
+    scene.world.node_tree.nodes[ground.UPRIGHT_SHARE].outputs[0].default_value = 0.0
+    lambert = mean("BLENDER_EEVEE")
+    print(f"wall on Physical Sand, sun {elevation:g}°: EEVEE/Cycles {(eevee / cycles - 1).round(3)}, "
+          f"without the gain {(lambert / cycles - 1).round(3)}")
     assert np.isfinite(eevee).all()
-    off, off_without = np.abs(eevee / cycles - 1.0), np.abs(without / cycles - 1.0)
+    off, off_without = np.abs(eevee / cycles - 1.0), np.abs(lambert / cycles - 1.0)
     capped = sandscape.addon.compat.eevee_dering_limit() < 0.8  # 5.0 holds the ground nearer the sky
     assert (off[1:] if capped else off).max() <= TOLERANCE
     assert off_without.max() > WITHOUT_GAIN_OFF
