@@ -272,3 +272,26 @@ def test_the_sand_panel_says_when_eevee_does_not_follow_a_new_sun(sandscape):
     assert ("label", sandscape.ui.panels.NEW_SUN) in draw_panel()
     assert bpy.ops.sandscape.add_sand_material(look="JOURNEY") == {"FINISHED"}
     assert ("label", sandscape.ui.panels.NEW_SUN) not in draw_panel()
+
+
+def test_the_atmosphere_panel_names_eevees_clamp_after_a_switch_from_cycles(sandscape):
+    """Add Atmosphere run while the scene renders in Cycles names no EEVEE clamp; switched to EEVEE
+    with Blender's Clamp Surface Indirect (10), the sidebar says it dims the ground's light; at 0
+    (the EEVEE presets') it says nothing."""
+    scene = bpy.context.scene
+    scene.render.engine = "CYCLES"
+    scene.eevee.clamp_surface_indirect = 10.0
+    assert bpy.ops.sandscape.add_atmosphere() == {"FINISHED"}
+    clamp = sandscape.ui.panels.clamp_text(scene)
+    assert "10" in clamp
+
+    def labels():
+        layout = RecordingLayout()
+        bpy.types.SANDSCAPE_PT_atmosphere.draw(types.SimpleNamespace(layout=layout), bpy.context)
+        return [c[1] for c in layout.calls if c[0] == "label"]
+
+    assert clamp not in labels()
+    scene.render.engine = "BLENDER_EEVEE"
+    assert clamp in labels()
+    scene.eevee.clamp_surface_indirect = 0.0
+    assert not any("Clamp Surface Indirect" in text for text in labels())

@@ -187,6 +187,9 @@ class SANDSCAPE_PT_atmosphere(SandscapeSubPanel, bpy.types.Panel):
         scene = context.scene
         if scene.render.engine == "BLENDER_EEVEE" and ownership.scene_world(scene) is not None:
             layout.label(text=ground_light_text(scene), icon="INFO")
+            # Add Atmosphere run under Cycles said nothing of it: the engine switched since.
+            if scene.eevee.clamp_surface_indirect > 0:
+                layout.label(text=clamp_text(scene), icon="ERROR")
         layout.operator("sandscape.add_atmosphere", icon="LIGHT_SUN")
         _sections(layout, context.scene.sandscape_post, POST_SECTIONS)
         engine = context.scene.render.engine
@@ -244,6 +247,12 @@ class SANDSCAPE_PT_render(SandscapeSubPanel, bpy.types.Panel):
         row = layout.row(align=True)
         row.operator("sandscape.optimize_scene", text="List", icon="VIEWZOOM").dry_run = True
         row.operator("sandscape.optimize_scene", text="Optimize", icon="MODIFIER").dry_run = False
+
+
+def clamp_text(scene):
+    """EEVEE's Clamp Surface Indirect above 0 dims the light our world gives from the ground."""
+    return (f"Clamp Surface Indirect {scene.eevee.clamp_surface_indirect:g} dims the ground's light "
+            "(EEVEE presets: 0)")
 
 
 def ground_light_text(scene):
