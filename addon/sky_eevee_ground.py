@@ -103,7 +103,7 @@ def _surface_material(scene, depsgraph, origin, direction):
     return None
 
 
-def _below_camera(scene):
+def below_camera(scene):
     """The material of the opaque surface below the scene's camera (straight down, else along
     its view), or None."""
     camera = scene.camera
@@ -122,7 +122,7 @@ def _below_camera(scene):
 def ground_material(scene, followed=None):
     """The material whose colour the ground takes: the surface below (or ahead of) the camera,
     else the followed sand while the scene still shows it, else a Sandscape sand in the scene."""
-    below = _below_camera(scene)
+    below = below_camera(scene)
     if below is not None:
         return below
     sands = [own.slot_material(obj, own.SAND) for obj in scene.objects]

@@ -260,6 +260,10 @@ def ground_light_text(scene):
     followed = sky_eevee.followed_ground(scene.world)
     if followed is None:
         return "EEVEE's light from the ground: the sand's colour"
+    # Chosen when an operator ran: a camera moved (or a frame stepped) over another ground since.
+    looked_at = sky_eevee_ground.below_camera(scene)
+    if looked_at is not None and looked_at != followed:
+        return f"EEVEE's light from the ground: the camera is over '{looked_at.name}', Add Atmosphere again"
     found = sky_eevee_ground.colour_input(followed)
     socket = found[0].inputs[found[1]] if found is not None else None
     linked = socket is not None and socket.is_linked
