@@ -105,15 +105,25 @@ def _surface_material(scene, depsgraph, origin, direction):
 
 def below_camera(scene):
     """The material of the opaque surface below the scene's camera (straight down, else along
-    its view), or None."""
+    its view, else through the middle of the frame's lower edge), or None."""
     camera = scene.camera
     if camera is None:
         return None
-    depsgraph = evaluation.scene_depsgraph(scene)  # once: both rays and the camera's place
-    matrix = camera.evaluated_get(depsgraph).matrix_world
-    origin = matrix.translation
-    for direction in (Vector((0.0, 0.0, -1.0)), -(matrix.to_3x3() @ Vector((0.0, 0.0, 1.0))).normalized()):
-        material = _surface_material(scene, depsgraph, origin, direction)
+    depsgraph = evaluation.scene_depsgraph(scene)  # once: every ray and the camera's place
+    evaluated = camera.evaluated_get(depsgraph)
+    matrix = evaluated.matrix_world
+    origin, turn = matrix.translation, matrix.to_3x3()
+    ahead = -(turn @ Vector((0.0, 0.0, 1.0))).normalized()
+    rays = [(origin, Vector((0.0, 0.0, -1.0))), (origin, ahead)]
+    if camera.type == "CAMERA":  # a camera standing just off the ground's edge sees it low in the frame
+        corners = sorted(evaluated.data.view_frame(scene=scene), key=lambda corner: corner.y)[:2]
+        edge = (corners[0] + corners[1]) / 2
+        if evaluated.data.type == "ORTHO":
+            rays.append((matrix @ Vector((edge.x, edge.y, 0.0)), ahead))
+        elif (turn @ edge).length > 0:
+            rays.append((origin, (turn @ edge).normalized()))
+    for start, direction in rays:
+        material = _surface_material(scene, depsgraph, start, direction)
         if material is not None:
             return material
     return None
@@ -134,12 +144,6 @@ def ground_material(scene, followed=None):
 
 def image_behind(socket):
     """The image an Image Texture node's Color gives the socket (through reroutes), or None."""
-    node = image_node_behind(socket)
-    return node.image if node is not None else None
-
-
-def image_node_behind(socket):
-    """The Image Texture node whose Color gives the socket (through reroutes), or None."""
     for _ in range(HITS):
         if not socket.is_linked:
             return None
@@ -149,7 +153,7 @@ def image_node_behind(socket):
             socket = node.inputs[0]
             continue
         if node.bl_idname == "ShaderNodeTexImage" and link.from_socket.name == "Color":
-            return node
+            return node.image
         return None
     return None
 
@@ -161,15 +165,14 @@ def _decoded_as_srgb(image):
     return not (image.is_float or space.is_data or "Linear" in space.name or "ACES" in space.name)
 
 
-def _associated(node):
-    """Whether the node's Color is its byte image's colour times its alpha, as Cycles gives it: a
-    straight-alpha byte image in a colour space, the node's Alpha output unused (used, the colour
-    is given unassociated). Float images and other alpha modes are taken as their pixels hold
-    them (not compared with Cycles)."""
-    image = node.image
-    return (image is not None and image.channels == 4 and not image.is_float
-            and image.alpha_mode == "STRAIGHT" and not image.colorspace_settings.is_data
-            and not node.outputs["Alpha"].is_linked)
+def _associated(image):
+    """Whether the ground reflects its byte image's colour times its alpha: as Cycles shades the
+    Color of a straight-alpha byte image in a colour space with the node's Alpha output unused,
+    and as a ground made transparent by that alpha reflects (used, Cycles gives the colour alone,
+    but lets the light through where the alpha is low). Float images and other alpha modes are
+    taken as their pixels hold them (not compared with Cycles)."""
+    return (image.channels == 4 and not image.is_float and image.alpha_mode == "STRAIGHT"
+            and not image.colorspace_settings.is_data)
 
 
 def mean_colour(image, associated=False):
@@ -205,21 +208,15 @@ def set_colour(node, colour):
 
 def colour_image(material):
     """The image the material's colour comes from (an Image Texture, through reroutes), or None."""
-    node = _colour_image_node(material)
-    return node.image if node is not None else None
-
-
-def _colour_image_node(material):
     found = colour_input(material)
-    return image_node_behind(found[0].inputs[found[1]]) if found is not None else None
+    return image_behind(found[0].inputs[found[1]]) if found is not None else None
 
 
 def image_colour(material):
     """(image, its mean colour) when the material's colour comes from an image it can read, else
     None."""
-    node = _colour_image_node(material)
-    image = node.image if node is not None else None
-    colour = mean_colour(image, _associated(node)) if image is not None else None
+    image = colour_image(material)
+    colour = mean_colour(image, _associated(image)) if image is not None else None
     return (image, colour) if colour is not None else None
 
 

@@ -56,7 +56,7 @@ def report_line(scene, settings, done):
     if done["world"] is not None and scene.render.engine == "BLENDER_EEVEE" and \
             scene.eevee.clamp_surface_indirect > 0:
         parts.append(f"EEVEE's Clamp Surface Indirect kept at {scene.eevee.clamp_surface_indirect:g} "
-                     "(it dims the sand's bounce light; the EEVEE presets set 0)")
+                     "(it dims the ground's light; the Render section's EEVEE presets set 0)")
     if (ground := ground_part(scene, done)) is not None:
         parts.append(ground)
     changed = "; changed: " + "; ".join(done["changes"]) if done["changes"] else ""
@@ -72,7 +72,7 @@ def ground_part(scene, done):
         if scene.camera is None:
             return None
         return (f"EEVEE's light from the ground takes the sand's colour: nothing opaque lies below camera "
-                f"'{scene.camera.name}' or ahead of it")
+                f"'{scene.camera.name}', ahead of it or low in its frame")
     image = done.get("ground_image")
     if done["ground_read"] and image is not None:
         return (f"EEVEE's light from the ground takes the mean colour of image '{image.name}' "

@@ -68,26 +68,49 @@ def test_the_ground_takes_the_colour_of_their_ground_under_the_camera(sandscape)
 
 
 def test_the_sidebar_says_when_the_camera_moved_over_another_ground(sandscape):
-    """The ground's colour is chosen when an operator runs: a camera moved over another ground
-    afterwards leaves it as it was, and the Atmosphere section says so until Add Atmosphere runs
-    again (a left-open item of 2026-12-07); moved back, it says nothing."""
+    """The ground's colour is chosen when an operator runs, one for the whole shot: a camera moved
+    (or animated) over another ground leaves it as it was, and the Atmosphere section says where
+    the camera is and that Add Atmosphere takes the ground from the frame it runs on (helpers'
+    findings of 2026-12-07); over the ground taken, it says nothing more."""
     bpy.ops.wm.read_homefile(use_empty=True)
     scene = bpy.context.scene
     scene.render.engine = "BLENDER_EEVEE"
     obj = _their_ground()
     _camera_over(obj)
     assert bpy.ops.sandscape.add_atmosphere() == {"FINISHED"}
-    text = sandscape.ui.panels.ground_light_text
-    assert text(scene).endswith("the colour of 'Their Olive Grass'")
+    panels = sandscape.ui.panels
+    assert panels.ground_light_text(scene).endswith("the colour of 'Their Olive Grass'")
+    assert panels.ground_moved_text(scene) == ()
     olive_place = scene.camera.location.copy()
     scene.camera.location.xy = (obj.matrix_world @ obj.data.polygons[0].center).xy
-    assert text(scene).endswith("the camera is over 'Their Grey Rock', Add Atmosphere again")
+    moved = panels.ground_moved_text(scene)
+    assert moved and moved[0].startswith("The camera is over 'Their Grey Rock' here")
+    assert panels.ground_light_text(scene).endswith("the colour of 'Their Olive Grass'")
     assert _colour(scene.world.node_tree) == pytest.approx(OLIVE[:3], abs=1e-6)  # as it was
     scene.camera.location = olive_place
-    assert text(scene).endswith("the colour of 'Their Olive Grass'")
+    assert panels.ground_moved_text(scene) == ()
     scene.camera.location.xy = (obj.matrix_world @ obj.data.polygons[0].center).xy
     assert bpy.ops.sandscape.add_atmosphere() == {"FINISHED"}
-    assert text(scene).endswith("the colour of 'Their Grey Rock'")
+    assert panels.ground_light_text(scene).endswith("the colour of 'Their Grey Rock'")
+    assert panels.ground_moved_text(scene) == ()
+
+
+def test_a_camera_just_off_the_grounds_edge_takes_the_ground_low_in_its_frame(sandscape):
+    """A camera standing just past the ground's edge, nearly level, the ground low in its frame (a
+    helper's shot): nothing below it, nothing along its view, the ground through the middle of
+    the frame's lower edge (perspective and orthographic)."""
+    bpy.ops.wm.read_homefile(use_empty=True)
+    bpy.ops.mesh.primitive_plane_add(size=40.0)  # its near edge at y = -20
+    olive = _material("Their Olive Grass", OLIVE)
+    bpy.context.active_object.data.materials.append(olive)
+    for kind, settings in (("PERSP", {}), ("ORTHO", {"ortho_scale": 8.0})):
+        # 3 m up, 1.5 m off the edge, pitched 2 degrees down: its view meets the ground 86 m out,
+        # past the plane's far edge; the frame's lower edge, 2.25 m lower (orthographic) or 11
+        # degrees lower (perspective), meets the plane.
+        camera = scenes.camera(kind, location=(0.0, -21.5, 3.0), rotation=(math.radians(88.0), 0.0, 0.0),
+                               **settings)
+        assert sandscape.addon.sky_eevee_ground.below_camera(bpy.context.scene) == olive, kind
+        bpy.data.objects.remove(camera)
 
 
 def test_a_camera_past_the_grounds_edge_takes_the_ground_it_looks_at(sandscape):

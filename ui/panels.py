@@ -187,6 +187,8 @@ class SANDSCAPE_PT_atmosphere(SandscapeSubPanel, bpy.types.Panel):
         scene = context.scene
         if scene.render.engine == "BLENDER_EEVEE" and ownership.scene_world(scene) is not None:
             layout.label(text=ground_light_text(scene), icon="INFO")
+            for line in ground_moved_text(scene):
+                layout.label(text=line)
             # Add Atmosphere run under Cycles said nothing of it: the engine switched since.
             if scene.eevee.clamp_surface_indirect > 0:
                 layout.label(text=clamp_text(scene), icon="ERROR")
@@ -252,18 +254,25 @@ class SANDSCAPE_PT_render(SandscapeSubPanel, bpy.types.Panel):
 def clamp_text(scene):
     """EEVEE's Clamp Surface Indirect above 0 dims the light our world gives from the ground."""
     return (f"Clamp Surface Indirect {scene.eevee.clamp_surface_indirect:g} dims the ground's light "
-            "(EEVEE presets: 0)")
+            "(Render presets: 0)")
+
+
+def ground_moved_text(scene):
+    """Lines for a camera over another ground than the one EEVEE's light from the ground took (it is
+    chosen when an operator runs, one for the whole shot): moved since, or on another frame."""
+    followed = sky_eevee.followed_ground(scene.world)
+    looked_at = sky_eevee_ground.below_camera(scene) if followed is not None else None
+    if looked_at is None or looked_at == followed:
+        return ()
+    return (f"The camera is over '{looked_at.name}' here: Add Atmosphere",
+            "takes one ground for the shot, from its frame")
 
 
 def ground_light_text(scene):
     """Whose colour EEVEE's light from the ground takes (addon/sky_eevee_ground.py)."""
     followed = sky_eevee.followed_ground(scene.world)
     if followed is None:
-        return "EEVEE's light from the ground: the sand's colour"
-    # Chosen when an operator ran: a camera moved (or a frame stepped) over another ground since.
-    looked_at = sky_eevee_ground.below_camera(scene)
-    if looked_at is not None and looked_at != followed:
-        return f"EEVEE's light from the ground: the camera is over '{looked_at.name}', Add Atmosphere again"
+        return "EEVEE's light from the ground: Sandscape's sand colour stands in"
     found = sky_eevee_ground.colour_input(followed)
     socket = found[0].inputs[found[1]] if found is not None else None
     linked = socket is not None and socket.is_linked
