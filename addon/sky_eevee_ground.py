@@ -175,9 +175,9 @@ def _associated(image):
             and not image.colorspace_settings.is_data)
 
 
-def mean_colour(image, associated=False):
-    """The image's mean colour in linear light, or None when it has no pixels (a missing file);
-    associated: its colour times its alpha (_associated)."""
+def mean_colour(image):
+    """The image's mean colour in linear light (times its alpha where _associated), or None when it
+    has no pixels (a missing file)."""
     width, height = image.size
     if width * height == 0:
         return None
@@ -196,7 +196,7 @@ def mean_colour(image, associated=False):
             bpy.data.images.remove(source)
     if len(pixels) == 0:
         return None
-    return image_mean.mean_colour(pixels, image.channels, _decoded_as_srgb(image), associated)
+    return image_mean.mean_colour(pixels, image.channels, _decoded_as_srgb(image), _associated(image))
 
 
 def set_colour(node, colour):
@@ -216,7 +216,7 @@ def image_colour(material):
     """(image, its mean colour) when the material's colour comes from an image it can read, else
     None."""
     image = colour_image(material)
-    colour = mean_colour(image, _associated(image)) if image is not None else None
+    colour = mean_colour(image) if image is not None else None
     return (image, colour) if colour is not None else None
 
 
