@@ -2,13 +2,16 @@
 
 EEVEE renders Physical Sand's rough diffuse as Lambert and its sheen like a diffuse: under a low
 sun the sand came out a third as bright as in Cycles seen with the sun behind, under a high sun
-brighter. The material gets a second Material Output that only EEVEE uses, whose surface is the
-Cycles surface scaled by Sandscape EEVEE Balance where Cycles is dimmer (the light less the sun's
-given back, so only the sun's is dimmed), and the sand's colour times the sun's light times
-(balance - 1) added where it is brighter. The sun's direction reaches the group by simple-
-expression drivers on the scene's sun lamp (no Python needed on a farm). Cycles' output is
-untouched. The Journey look's EEVEE output is its own EEVEE Shader (its contrast through one
-diffuse, the driven sun undoing Lambert's cosine) with the glints on top.
+brighter, and its sky light at grazing views dimmer. The material gets a second Material Output
+that only EEVEE uses, balanced by Sandscape EEVEE Balance's two factors: the balance on the sun's
+light (the Cycles surface scaled by it where Cycles is dimmer; where it is brighter the sand's own
+sun's part, EEVEE's sand less its ambient, times (balance - 1) added where the sun reaches) and
+the ambient balance on the rest (the sand's ambient, the ambient light at the normal times its
+colour plus what its sheen adds, times the ambient balance less what the scale kept of it,
+added). The sun's direction reaches the group by simple-expression drivers on
+the scene's sun lamp (no Python needed on a farm). Cycles' output is untouched. The Journey
+look's EEVEE output is its own EEVEE Shader (its contrast through one diffuse, the driven sun
+undoing Lambert's cosine) with the glints on top.
 """
 
 import math
@@ -17,6 +20,8 @@ from ..node_groups import eevee_balance
 from ..node_groups import helper as h
 from . import drivers
 from . import ownership as own
+from . import sand_eevee_light as light_probes
+from .sand_eevee_light import AMBIENT, SAND_AMBIENT, SUN_LIGHT, SUN_LIGHT_PREFIX
 from .sun_lamp import scene_sun
 
 CYCLES_OUTPUT = "Sandscape Output"
@@ -27,25 +32,24 @@ DOWN, UP = "Sandscape EEVEE Dimmer", "Sandscape EEVEE Brighter"
 DOWN_HELD, UP_HELD = "Sandscape EEVEE Dimmer ≥ 0", "Sandscape EEVEE Brighter ≥ 0"
 FRAME = "Sandscape EEVEE Frame"
 JOURNEY_SURFACE = "Sandscape EEVEE Journey Surface"
-# The sun's light alone on a white Lambert surface here (shadow and all): EEVEE's lighting of a
-# diffuse at the normal, less its lighting at the normal turned square to the sun (no sunlight,
-# nearly the same sky and haze).
-SUN_LIGHT_PREFIX, BOOST_LIGHT = "Sandscape EEVEE Sun Light ", "Sandscape EEVEE Boost Light"
-SUN_LIGHT = tuple(f"{SUN_LIGHT_PREFIX}{part}" for part in (
-    "Geometry", "Sun", "N·L", "Along Sun", "Off Sun", "Square to Sun", "Lit", "Unlit", "Lit RGB", "Unlit RGB",
-    "Difference", "Held"))
+BOOST_LIGHT = "Sandscape EEVEE Boost Light"  # before 2026-12-07: the sand's colour times the light added
+SAND_RGB, SUN_PART = "Sandscape EEVEE Sand RGB", "Sandscape EEVEE Sun Part"
+SUN_PART_HELD, BOOST_REACH = "Sandscape EEVEE Sun Part ≥ 0", "Sandscape EEVEE Boost Reach"
 # How much of the sun's light arrives (EEVEE's shadow): the sun's light here over the lamp's
 # unshadowed light at this normal; lit glints blend in by it.
 SUN_IRRADIANCE, GLINTS_WHERE_LIT = "Sandscape EEVEE Sun Irradiance", "Sandscape EEVEE Glints Where Lit"
 SUN_REACH = tuple(f"Sandscape EEVEE Sun Reach {part}" for part in (
     "Lamp Total", "Lit Total", "Cosine", "Lamp at Normal", "Over Pi", "Held", "Share"))
 # Where the balance dims (below 1) it scales the whole surface: the ambient's share it took is
-# given back, the sand's colour times (1 − balance) times the light with the sun's taken out.
+# given back, and the ambient balanced: the sand's colour times the ambient light at the normal
+# times (ambient balance − min(balance, 1)).
 AMBIENT_KEPT, SUN_BOOSTED, LIGHT_CORRECTION = ("Sandscape EEVEE Ambient Kept", "Sandscape EEVEE Sun Boosted",
                                                "Sandscape EEVEE Light Correction")
+AMBIENT_SCALE, AMBIENT_GIVEN = "Sandscape EEVEE Ambient Scale", "Sandscape EEVEE Ambient Given"
 NODES = (OUTPUT, BALANCE, SUN, SCALE, BOOST, BOOST_COLOR, BOTH, DOWN, UP, DOWN_HELD, UP_HELD, FRAME,
          JOURNEY_SURFACE, BOOST_LIGHT, SUN_IRRADIANCE, GLINTS_WHERE_LIT, AMBIENT_KEPT, SUN_BOOSTED,
-         LIGHT_CORRECTION) + SUN_LIGHT + SUN_REACH
+         LIGHT_CORRECTION, AMBIENT_SCALE, AMBIENT_GIVEN, SAND_RGB, SUN_PART, SUN_PART_HELD,
+         BOOST_REACH) + SUN_LIGHT + SAND_AMBIENT + SUN_REACH
 REACH_MIN_COSINE = 0.02  # below it the sun's light and the lamp's are both near 0: held
 
 
@@ -64,8 +68,10 @@ def attach(material, scene, look_node, look, glint=None):
         cycles.target = "ALL"
         return
     # Before 2026-11-29: the boost a diffuse (it brightened the sky's light too), lit glints in the
-    # shade (both looks), the dimming balance scaling the ambient.
-    older = own.node(tree, GLINTS_WHERE_LIT) is None or (not journey and own.node(tree, AMBIENT_KEPT) is None)
+    # shade (both looks), the dimming balance scaling the ambient; before 2026-12-07 the ambient
+    # from one probe and not balanced.
+    older = own.node(tree, GLINTS_WHERE_LIT) is None or own.node(tree, AMBIENT) is None or (
+        not journey and any(own.node(tree, name) is None for name in (AMBIENT_KEPT, AMBIENT_SCALE, SAND_RGB)))
     if own.node(tree, OUTPUT) is not None and ((own.node(tree, JOURNEY_SURFACE) is None) == journey or older):
         _remove(tree)  # built for the other look, or an older build
     if journey:
@@ -91,7 +97,8 @@ def _remove(tree):
 
 def sync(tree):
     """The EEVEE output shows what the Cycles output shows: its surface (balanced) and its
-    displacement (painted prints, ripples), relinked after either changed."""
+    displacement (painted prints, ripples), relinked after either changed; Shader to RGB reads the
+    sand under the glints."""
     cycles, output = own.node(tree, CYCLES_OUTPUT), own.node(tree, OUTPUT)
     if cycles is None or output is None:
         return
@@ -99,6 +106,9 @@ def sync(tree):
     where_lit = own.node(tree, GLINTS_WHERE_LIT)
     surface = cycles.inputs["Surface"].links
     base = _glint_base(surface[0].from_socket) if surface else None
+    sand_rgb = own.node(tree, SAND_RGB)  # the sand under any glints: its sun's part is what the balance lifts
+    if sand_rgb is not None and (base or surface):
+        h.link(tree, base or surface[0].from_socket, sand_rgb.inputs["Shader"])
     targets = (("Displacement", output.inputs["Displacement"]),)
     if scale is not None and where_lit is not None and base is not None:  # lit glints where the sun reaches
         h.link(tree, base, where_lit.inputs[1])
@@ -209,37 +219,52 @@ def _ensure_nodes(tree, look_node):
     clamped = h.math(tree, "MAXIMUM", down.outputs[0], 0.0)
     clamped.name = DOWN_HELD
     h.link(tree, clamped.outputs[0], scale.inputs["Fac"])
-    # Where it is brighter: the sand's colour times the sun's light times (balance − 1).
+    # Where it is brighter: the sand's own sun's part (EEVEE's sand less its ambient) times
+    # (balance − 1), where the sun reaches.
     up = h.math(tree, "SUBTRACT", ratio, 1.0, label="Balance − 1")
     up.name = UP
     extra = h.math(tree, "MAXIMUM", up.outputs[0], 0.0)
     extra.name = UP_HELD
-    # The balance corrects the sun's light (it was fitted to it): the sky's and the haze's, which
-    # reach the shade too, are neither brightened where it lifts nor dimmed where it scales.
-    lit, where_lit, made = _glints_where_lit(tree, normal[0].from_socket if normal else None, sun.outputs[0])
-    boosted = h.vector_math(tree, "SCALE", lit, label="Sun's Light × (Balance − 1)")
-    boosted.name = SUN_BOOSTED
-    h.link(tree, extra.outputs[0], boosted.inputs["Scale"])
-    unlit = tree.nodes[f"{SUN_LIGHT_PREFIX}Unlit RGB"].outputs["Color"]
-    kept = h.vector_math(tree, "SCALE", unlit, label="Light Less the Sun's × (1 − Balance)")
-    kept.name = AMBIENT_KEPT
-    h.link(tree, clamped.outputs[0], kept.inputs["Scale"])
-    correction = h.vector_math(tree, "ADD", boosted.outputs[0], kept.outputs[0], label="Light to Add")
-    correction.name = LIGHT_CORRECTION
+    # The balance corrects the sun's light (it was fitted to it); the light less the sun's (the
+    # sky's, the haze's, the ground's), which reaches the shade too, has its own ambient balance.
+    _, where_lit, made = _glints_where_lit(tree, normal[0].from_socket if normal else None, sun.outputs[0])
     color = h.add_node(tree, "ShaderNodeVectorMath", name=BOOST_COLOR, label="Sand Colour", operation="SCALE",
                        inputs={"Scale": 1.0})
-    light = h.vector_math(tree, "MULTIPLY", color.outputs[0], correction.outputs[0], label="× Light to Add")
-    boost = h.add_node(tree, "ShaderNodeEmission", name=BOOST, label="As Cycles (the sun's light alone)",
+    ambient, ambient_nodes = light_probes.sand_ambient(tree, normal[0].from_socket if normal else None,
+                                                       tree.nodes[AMBIENT].outputs[0], color.outputs[0])
+    sand_rgb = h.add_node(tree, "ShaderNodeShaderToRGB", name=SAND_RGB, label="EEVEE's Sand")  # fed by sync()
+    sun_part = h.vector_math(tree, "SUBTRACT", sand_rgb.outputs["Color"], ambient, label="Its Sun's Part")
+    sun_part.name = SUN_PART
+    held = h.vector_math(tree, "MAXIMUM", sun_part.outputs[0], (0.0, 0.0, 0.0), label="≥ 0")
+    held.name = SUN_PART_HELD
+    reach = where_lit.inputs["Fac"].links[0].from_socket
+    reached = h.math(tree, "MULTIPLY", extra.outputs[0], reach, label="(Balance − 1) Where the Sun Reaches")
+    reached.name = BOOST_REACH
+    boosted = h.vector_math(tree, "SCALE", held.outputs[0], label="Sun Part × (Balance − 1)")
+    boosted.name = SUN_BOOSTED
+    h.link(tree, reached.outputs[0], boosted.inputs["Scale"])
+    kept = h.vector_math(tree, "SCALE", ambient, label="Sand's Ambient × (K − min(Balance, 1))")
+    kept.name = AMBIENT_KEPT
+    # The ambient's own balance, less what the scale kept of it: (1 − min(balance, 1)) + (K − 1).
+    ambient_scale = h.math(tree, "ADD", clamped.outputs[0], balance.outputs["Ambient Balance"])
+    ambient_scale.name = AMBIENT_SCALE
+    given = h.math(tree, "SUBTRACT", ambient_scale.outputs[0], 1.0, label="Ambient Balance − min(Balance, 1)")
+    given.name = AMBIENT_GIVEN
+    h.link(tree, given.outputs[0], kept.inputs["Scale"])
+    correction = h.vector_math(tree, "ADD", boosted.outputs[0], kept.outputs[0], label="Light to Add")
+    correction.name = LIGHT_CORRECTION
+    boost = h.add_node(tree, "ShaderNodeEmission", name=BOOST, label="As Cycles (light added)",
                        inputs={"Strength": 1.0})
-    h.link(tree, light.outputs[0], boost.inputs["Color"])
-    light.name = BOOST_LIGHT
+    h.link(tree, correction.outputs[0], boost.inputs["Color"])
     h.link(tree, where_lit.outputs[0], scale.inputs[1])  # sync() links the mix's two sides
     both = h.add_node(tree, "ShaderNodeAddShader", name=BOTH)
     h.link(tree, scale.outputs[0], both.inputs[0])
     h.link(tree, boost.outputs[0], both.inputs[1])
     h.link(tree, both.outputs[0], output.inputs["Surface"])
     frame = h.frame(tree, "EEVEE: Balanced to Cycles", (sun, balance, down, clamped, scale, up, extra, color,
-                                                         *made, boosted, kept, correction, light, boost,
+                                                         *made, *ambient_nodes, sand_rgb, sun_part, held,
+                                                         reached, boosted,
+                                                         ambient_scale, given, kept, correction, boost,
                                                          both, output))
     frame.name = FRAME
     return output
@@ -250,46 +275,12 @@ def _glints_where_lit(tree, normal, sun):
     mirrored the bright sky round the sun, which Cycles' dunes hide. A Mix Shader by the share of
     the sun's light that arrives (its two sides linked by the caller). Returns (the sun's light
     socket, the mix, the nodes made)."""
-    lit, lit_nodes = _sun_light(tree, normal, sun)
+    lit, lit_nodes = light_probes.sun_light(tree, normal, sun)
     reach, reach_nodes = _sun_reach(tree, lit, tree.nodes[f"{SUN_LIGHT_PREFIX}N·L"].outputs["Value"])
     where_lit = h.add_node(tree, "ShaderNodeMixShader", name=GLINTS_WHERE_LIT,
                            label="Glints Where the Sun Reaches")
     h.link(tree, reach, where_lit.inputs["Fac"])
     return lit, where_lit, (*lit_nodes, *reach_nodes, where_lit)
-
-
-def _sun_light(tree, normal, sun):
-    """The sun's light on a white Lambert surface at the shading normal (`normal`, None: the
-    geometry's), shadowed as EEVEE shadows it: Shader to RGB of a diffuse there, less that of a
-    diffuse whose normal is turned square to the sun (N - (N·L) L: no sunlight, nearly the same
-    ambient light). Returns (the colour socket, the nodes made)."""
-    made = []
-
-    def named(node, part):
-        node.name = f"{SUN_LIGHT_PREFIX}{part}"
-        made.append(node)
-        return node
-
-    if normal is None:
-        normal = named(h.add_node(tree, "ShaderNodeNewGeometry"), "Geometry").outputs["Normal"]
-    to_sun = named(h.vector_math(tree, "NORMALIZE", sun, label="Sun"), "Sun").outputs[0]
-    cosine = named(h.vector_math(tree, "DOT_PRODUCT", normal, to_sun, label="N·L"), "N·L")
-    along = named(h.vector_math(tree, "SCALE", to_sun, label="(N·L) L"), "Along Sun")
-    h.link(tree, cosine.outputs["Value"], along.inputs["Scale"])
-    off = named(h.vector_math(tree, "SUBTRACT", normal, along.outputs[0], label="N − (N·L) L"), "Off Sun")
-    square = named(h.vector_math(tree, "NORMALIZE", off.outputs[0], label="Square to the Sun"),
-                   "Square to Sun")
-    colours = []
-    for part, facing in (("Lit", normal), ("Unlit", square.outputs[0])):
-        diffuse = named(h.add_node(tree, "ShaderNodeBsdfDiffuse", label=f"White Diffuse ({part})",
-                                   inputs={"Color": (1.0, 1.0, 1.0, 1.0)}), part)
-        h.link(tree, facing, diffuse.inputs["Normal"])
-        rgb = named(h.add_node(tree, "ShaderNodeShaderToRGB", label=f"{part} Light"), f"{part} RGB")
-        h.link(tree, diffuse.outputs[0], rgb.inputs["Shader"])
-        colours.append(rgb.outputs["Color"])
-    difference = named(h.vector_math(tree, "SUBTRACT", *colours, label="The Sun's Light"), "Difference")
-    held = named(h.vector_math(tree, "MAXIMUM", difference.outputs[0], (0.0, 0.0, 0.0), label="≥ 0"), "Held")
-    return held.outputs[0], made
 
 
 def _sun_reach(tree, lit, cosine):

@@ -9,7 +9,7 @@ from ..core import eevee_balance as twin
 from . import helper as h
 
 NAME = "Sandscape EEVEE Balance"
-VERSION = 6
+VERSION = 7
 TREE_TYPE = "ShaderNodeTree"
 DESCRIPTION = ("Cycles' brightness of Sandscape sand over EEVEE's at this view, sun and normal: the "
                "factor the sand's EEVEE output applies")
@@ -20,13 +20,51 @@ INPUTS = {  # name -> (type, description, default, min, max, subtype); append on
     "Normal": ("NodeSocketVector", "The surface's normal (unlinked: the shading normal)",
                (0.0, 0.0, 0.0), None, None, h.SURFACE_NORMAL),
 }
-OUTPUTS = {"Balance": ("NodeSocketFloat", "Cycles' brightness over EEVEE's (1 without a sun)")}
+OUTPUTS = {"Balance": ("NodeSocketFloat", "Cycles' brightness over EEVEE's in the sun's light (1 without a "
+                       "sun)"),
+           "Ambient Balance": ("NodeSocketFloat", "Cycles' brightness over EEVEE's in the light less the "
+                               "sun's (the sky's, the haze's, the ground's)")}
 
 
 def _clamped_cosine(tree, a, b, label):
     dot = h.vector_math(tree, "DOT_PRODUCT", a, b, label=label)
     held = h.math(tree, "MAXIMUM", dot.outputs["Value"], twin.MIN_COSINE, label=f"{label} ≥ Limit")
     return held, dot
+
+
+def _monomials(tree, powers, made):
+    """√v^i √l^j a^k for each of twin.TERMS, each made once (both fits share them): sockets, None
+    for the constant term (nodes to `made`)."""
+    sockets = []
+    for exponents in twin.TERMS:
+        factors = [powers[axis][power] for axis, power in enumerate(exponents) if power]
+        term = factors[0] if factors else None
+        for factor in factors[1:]:
+            node = h.math(tree, "MULTIPLY", term, factor)
+            made.append(node)
+            term = node.outputs[0]
+        sockets.append(term)
+    return sockets
+
+
+def _fitted(tree, monomials, coefficients, limits, label, made):
+    """exp(sum c m) over the monomials, held in `limits`: the Clamp node (nodes to `made`)."""
+    total = None
+    for term, coefficient in zip(monomials, coefficients, strict=True):
+        if term is None:
+            node = h.math(tree, "ADD", coefficient, 0.0, label=f"{coefficient:.4f}")
+        elif total is None:
+            node = h.math(tree, "MULTIPLY", term, coefficient, label=f"× {coefficient:.4f}")
+        else:
+            node = h.math(tree, "MULTIPLY_ADD", term, coefficient, c=total, label=f"× {coefficient:.4f} +")
+        made.append(node)
+        total = node.outputs[0]
+    exp = h.math(tree, "EXPONENT", total, label=label)
+    held = h.add_node(tree, "ShaderNodeClamp", label=f"{label} in the Fitted Range",
+                      inputs={"Min": limits[0], "Max": limits[1]})
+    h.link(tree, exp.outputs[0], held.inputs["Value"])
+    made += [exp, held]
+    return held
 
 
 def build(tree):
@@ -60,39 +98,31 @@ def build(tree):
     for _, made in across:
         angle_nodes += made
 
-    # exp(sum c v^i l^j a^k), held in the fitted range; each variable's powers made once.
+    # exp(sum c √v^i √l^j a^k), held in the fitted range; each variable's powers made once.
     fit_nodes = []
     powers = []
-    for variable in (v.outputs[0], l_.outputs[0], a.outputs[0]):
+    roots = [h.math(tree, "SQRT", cosine.outputs[0], label=f"√{name}")
+             for cosine, name in ((v, "N·V"), (l_, "N·L"))]
+    fit_nodes += roots
+    for variable, highest in ((roots[0].outputs[0], twin.DEGREE), (roots[1].outputs[0], twin.DEGREE),
+                              (a.outputs[0], twin.AZIMUTH_POWERS)):
         made = [None, variable]
-        for _ in range(2, twin.DEGREE + 1):
+        for _ in range(2, highest + 1):
             node = h.math(tree, "MULTIPLY", made[-1], variable)
             fit_nodes.append(node)
             made.append(node.outputs[0])
         powers.append(made)
-    total = None
-    for exponents, coefficient in zip(twin.TERMS, twin.COEFFICIENTS, strict=True):
-        factors = [powers[axis][power] for axis, power in enumerate(exponents) if power]
-        term = factors[0] if factors else None
-        for factor in factors[1:]:
-            node = h.math(tree, "MULTIPLY", term, factor)
-            fit_nodes.append(node)
-            term = node.outputs[0]
-        if term is None:
-            node = h.math(tree, "ADD", coefficient, 0.0, label=f"{coefficient:.4f}")
-        elif total is None:
-            node = h.math(tree, "MULTIPLY", term, coefficient, label=f"× {coefficient:.4f}")
-        else:
-            node = h.math(tree, "MULTIPLY_ADD", term, coefficient, c=total, label=f"× {coefficient:.4f} +")
-        fit_nodes.append(node)
-        total = node.outputs[0]
-    exp = h.math(tree, "EXPONENT", total, label="Balance")
-    low, high = twin.BALANCE_RANGE
-    held = h.add_node(tree, "ShaderNodeClamp", label="In the Fitted Range", inputs={"Min": low, "Max": high})
-    h.link(tree, exp.outputs[0], held.inputs["Value"])
-    # No sun (a zero direction): 1.
+    monomials = _monomials(tree, powers, fit_nodes)
+    held = _fitted(tree, monomials, twin.COEFFICIENTS, twin.BALANCE_RANGE, "Balance", fit_nodes)
+    ambient = _fitted(tree, monomials, twin.AMBIENT_COEFFICIENTS, twin.AMBIENT_RANGE, "Ambient Balance",
+                      fit_nodes)
+    # No sun (a zero direction): 1, both.
     length = h.vector_math(tree, "LENGTH", inputs["Sun Direction"], label="|Sun|")
     sun = h.math(tree, "GREATER_THAN", length.outputs["Value"], 1e-6, label="A Sun")
+    ambient_less_one = h.math(tree, "SUBTRACT", ambient.outputs["Result"], 1.0)
+    ambient_or_one = h.math(tree, "MULTIPLY_ADD", ambient_less_one.outputs[0], sun.outputs[0], c=1.0,
+                            label="Ambient Balance or 1")
+    h.link(tree, ambient_or_one.outputs[0], group_out.inputs["Ambient Balance"])
     # Faces turned from the sun get no sun to correct: the fit eases to 1 as N·L falls to 0.
     facing = h.math(tree, "DIVIDE", l_dot.outputs["Value"], twin.MIN_COSINE, label="N·L ÷ Limit")
     reached = h.add_node(tree, "ShaderNodeClamp", label="Sun Reaches (0..1)", inputs={"Min": 0.0, "Max": 1.0})
@@ -103,7 +133,7 @@ def build(tree):
                     label="Balance or 1")
     h.link(tree, result.outputs[0], group_out.inputs["Balance"])
     h.frame(tree, "View, Sun and Azimuth about the Normal", angle_nodes)
-    h.frame(tree, "Fitted Ratio", (*fit_nodes, exp, held))
+    h.frame(tree, "Fitted Ratios", fit_nodes)
     h.frame(tree, "Without a Sun, or Turned from It",
-            (length, sun, facing, reached, weight, minus_one, result))
+            (length, sun, facing, reached, weight, minus_one, result, ambient_less_one, ambient_or_one))
     h.arrange(tree)

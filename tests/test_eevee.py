@@ -179,19 +179,22 @@ def test_dust_transmittance_per_channel_in_eevee(eevee_scene, sandscape):
     assert measured[2] < measured[1] < measured[0]
 
 
-@pytest.mark.parametrize("elevation", [15.0, pytest.param(70.0, marks=pytest.mark.sweep)])
-def test_sand_in_eevee_is_as_bright_as_in_cycles(eevee_scene, sandscape, elevation):
+@pytest.mark.parametrize("elevation,azimuth", [(15.0, 150.0), (55.0, 0.0),
+                                               pytest.param(70.0, 150.0, marks=pytest.mark.sweep)])
+def test_sand_in_eevee_is_as_bright_as_in_cycles(eevee_scene, sandscape, elevation, azimuth):
     """Flat sand with ripples under Add Atmosphere's sun, dust and haze, at eye level: EEVEE's mean
-    over the ground near Cycles' (issue 27 asks 15 %) with the sand's EEVEE output, and at most half
-    as far off as without it (Lambert diffuse and a diffuse-like sheen against Cycles' rough
-    diffuse and microfiber sheen). When written, on 5.2: -12.9 % (-56.0 % without) under a 15°
-    sun behind the camera, -0.9 % (+11.6 %) under a 70° sun; on 5.0, whose engines differ a little
-    from the 5.2 the balance was fitted on, -14.2 % and -0.8 %."""
+    colour over the ground within the issue's 15 % of Cycles' in each channel with the sand's EEVEE
+    output, and at most half as far off in the mean as without it (Lambert diffuse and a
+    diffuse-like sheen against Cycles' rough diffuse and microfiber sheen). The sun behind the
+    camera at 15° and 70°, ahead at 55° (there the one balance of 2026-12-05 left red +19 %).
+    When written, on 5.2: -10.2 / -11.3 / -12.1 % at 15° (without the output -57.8 / -54.9 /
+    -46.4 %), +1.9 / +2.1 / +0.0 % at 55° ahead (+80.8 / +71.2 / +48.9 %), -5.9 / -1.2 / +2.8 %
+    at 70° (+10.9 / +14.4 / +14.4 %); on 5.0 FIXME."""
     bpy.ops.mesh.primitive_plane_add(size=400)
     ground = bpy.context.active_object
     assert bpy.ops.sandscape.add_sand_material() == {"FINISHED"}
     air = eevee_scene.sandscape_atmosphere
-    air.sun_elevation, air.sun_azimuth = math.radians(elevation), math.radians(150.0)
+    air.sun_elevation, air.sun_azimuth = math.radians(elevation), math.radians(azimuth)
     assert bpy.ops.sandscape.add_atmosphere() == {"FINISHED"}
     scenes.camera("PERSP", location=(0.0, 0.0, 1.6), rotation=(math.radians(80), 0.0, 0.0), lens=35)
     eevee_scene.frame_set(1)
@@ -199,16 +202,17 @@ def test_sand_in_eevee_is_as_bright_as_in_cycles(eevee_scene, sandscape, elevati
     def ground_mean(engine):
         eevee_scene.render.engine = engine
         eevee_scene.cycles.samples, eevee_scene.cycles.use_denoising = 16, False
-        return readback.render(eevee_scene)[: SIZE[1] // 2, :, :3].mean()
+        return readback.render(eevee_scene)[: SIZE[1] // 2, :, :3].astype(np.float64).mean((0, 1))
 
     cycles, balanced = ground_mean("CYCLES"), ground_mean("BLENDER_EEVEE")
     material = ground.active_material
     sandscape.addon.sand_eevee.attach(material, eevee_scene, sandscape.addon.sand.look_node(material), None)
     plain = ground_mean("BLENDER_EEVEE")
-    print(f"sun {elevation:g}°: EEVEE against Cycles {balanced / cycles - 1:+.1%} balanced, "
-          f"{plain / cycles - 1:+.1%} without")
-    assert abs(balanced / cycles - 1.0) <= 0.15
-    assert abs(balanced / cycles - 1.0) <= 0.5 * abs(plain / cycles - 1.0)
+    print(f"sun {elevation:g}° at {azimuth:g}°: EEVEE against Cycles {np.round(balanced / cycles - 1, 3)} "
+          "balanced, "
+          f"{np.round(plain / cycles - 1, 3)} without")
+    assert np.abs(balanced / cycles - 1.0).max() <= 0.15
+    assert abs(balanced.mean() / cycles.mean() - 1.0) <= 0.5 * abs(plain.mean() / cycles.mean() - 1.0)
 
 
 @pytest.mark.parametrize("elevation", [10, pytest.param(30, marks=pytest.mark.sweep),

@@ -83,12 +83,15 @@ def test_the_balance_follows_the_sun_and_the_prints_reach_eevee(sandscape):
     assert source(tree.nodes["Sandscape EEVEE Scale"].inputs[1]) == where_lit.outputs[0]
     assert source(where_lit.inputs[2]) == source(cycles.inputs["Surface"])
     assert source(where_lit.inputs[1]) == source(source(cycles.inputs["Surface"]).node.inputs["Base"])
+    # the sand's own light (its sun's part lifted where the balance is above 1): the sand under the glints
+    assert source(tree.nodes["Sandscape EEVEE Sand RGB"].inputs["Shader"]) == source(where_lit.inputs[1])
 
 
 def test_an_older_balance_boosting_the_sky_too_is_rebuilt(sandscape):
     """A material made before the boost took the sun's light alone (a Lambert diffuse named as the
     boost) and before lit glints kept to the sun, or before the dimming balance gave the ambient
-    back: the next Add Sand Material builds the EEVEE nodes anew, the same nodes as a new one's."""
+    back, or before its ambient had a balance of its own: the next Add Sand Material builds the
+    EEVEE nodes anew, the same nodes as a new one's."""
     sand_eevee = sandscape.addon.sand_eevee
     plane = readback.uv_plane()
     assert bpy.ops.sandscape.add_sand_material() == {"FINISHED"}
@@ -115,4 +118,49 @@ def test_an_older_balance_boosting_the_sky_too_is_rebuilt(sandscape):
     assert bpy.ops.sandscape.add_sand_material() == {"FINISHED"}
     assert sorted(node.name for node in tree.nodes) == fresh
     kept = tree.nodes[sand_eevee.AMBIENT_KEPT]
-    assert source(kept.inputs[0]).node == tree.nodes[f"{sand_eevee.SUN_LIGHT_PREFIX}Unlit RGB"]
+    assert source(kept.inputs[0]).node == tree.nodes[sand_eevee.SAND_AMBIENT[-1]]
+    # A build whose ambient was not balanced (before 2026-12-07): its own balance now scales it.
+    tree.nodes.remove(tree.nodes[sand_eevee.AMBIENT_SCALE])
+    assert bpy.ops.sandscape.add_sand_material() == {"FINISHED"}
+    assert sorted(node.name for node in tree.nodes) == fresh
+    given = source(tree.nodes[sand_eevee.AMBIENT_KEPT].inputs["Scale"]).node
+    scale = source(given.inputs[0]).node
+    assert source(scale.inputs[1]) == tree.nodes[sand_eevee.BALANCE].outputs["Ambient Balance"]
+
+
+def test_the_sands_ambient_follows_its_twin(sandscape):
+    """The sand's ambient in its EEVEE output (the ambient light at the normal times the sand's
+    colour plus W(N·V), what EEVEE's sheen and specular add) built on a constant light and rendered
+    by Cycles on a plane seen from 1.6 m, grazing to steep: each pixel as
+    core.eevee_balance.sand_ambient at its N·V, within 1e-4 (W's curve is not flat there)."""
+    from core import eevee_balance as twin
+
+    bpy.ops.mesh.primitive_plane_add(size=200)
+    plane = bpy.context.active_object
+    material = bpy.data.materials.new("Sand Ambient")
+    tree = material.node_tree
+    tree.nodes.clear()
+    light, colour = (0.9, 0.7, 0.5), (0.62, 0.45, 0.27)
+    sockets = []
+    for value in (light, colour):
+        node = tree.nodes.new("ShaderNodeRGB")
+        node.outputs[0].default_value = (*value, 1.0)
+        sockets.append(node.outputs[0])
+    ambient, _ = sandscape.addon.sand_eevee_light.sand_ambient(tree, None, *sockets)
+    emission = tree.nodes.new("ShaderNodeEmission")
+    tree.links.new(ambient, emission.inputs["Color"])
+    output = tree.nodes.new("ShaderNodeOutputMaterial")
+    tree.links.new(emission.outputs[0], output.inputs["Surface"])
+    plane.data.materials.append(material)
+    scene = readback.cycles_scene(bpy.context.scene, (16, 24), 1)
+    scene.cycles.filter_width = 0.01  # each pixel its centre's ray
+    camera = scenes.camera("PERSP", location=(0.0, 0.0, 1.6), rotation=(math.radians(55), 0.0, 0.0), lens=20)
+    scene.camera = camera
+    pixels = readback.render(scene)[..., :3]
+    _, directions = scenes.camera_rays(camera, 16, 24)
+    v = -directions[..., 2]
+    ground = v > 0.02
+    expected = twin.sand_ambient(light, colour, v)
+    assert v[ground].min() < 0.1 and v[ground].max() > 0.8
+    assert np.ptp(twin.sheen_ambient(v[ground]), axis=0).min() > 0.05
+    assert np.abs(pixels[ground] - expected[ground]).max() < 1e-4
