@@ -187,9 +187,9 @@ def test_sand_in_eevee_is_as_bright_as_in_cycles(eevee_scene, sandscape, elevati
     output, each channel within 25 %, and at most half as far off as without it (Lambert diffuse
     and a diffuse-like sheen against Cycles' rough diffuse and microfiber sheen). The sun behind the
     camera at 15° and 70°, ahead at 55° (there the one balance of 2026-12-05 left red +19 %).
-    When written, on 5.2: -10.2 / -11.3 / -12.1 % at 15° (without the output -57.8 / -54.9 /
-    -46.4 %), +1.9 / +2.1 / +0.0 % at 55° ahead (+80.8 / +71.2 / +48.9 %), -5.9 / -1.2 / +2.8 %
-    at 70° (+10.9 / +14.4 / +14.4 %); on 5.0 FIXME."""
+    Luminance when written, on 5.2: -11.0 % at 15° (-55.5 % without the output), +2.0 % at 55°
+    ahead (+72.7 %), -2.4 % at 70° (+13.4 %); on 5.0 -12.7 % (blue -19.9 %), +0.0 % (blue
+    -9.1 %), -3.2 %."""
     bpy.ops.mesh.primitive_plane_add(size=400)
     ground = bpy.context.active_object
     assert bpy.ops.sandscape.add_sand_material() == {"FINISHED"}
