@@ -1,8 +1,9 @@
 """Sandscape EEVEE Balance: how much brighter Cycles renders Sandscape Physical Sand than EEVEE
-here, from the view, the sun and the normal: EEVEE lacks Cycles' rough diffuse and microfiber
-sheen, so its sand is dim under a low sun and bright under a high one. The sand material's
-EEVEE output scales its surface by this (Cycles' output does not use it).
-Twin: core.eevee_balance.balance (a fit to both engines' renders).
+here, from the view, the sun and the normal, in two factors: Balance on the sun's light and
+Ambient Balance on the rest. EEVEE lacks Cycles' rough diffuse and microfiber sheen, so its sand
+is dim under a low sun and bright under a high one, and gets less of the sky's light at grazing
+views. The sand material's EEVEE output applies both (Cycles' output does not use them).
+Twin: core.eevee_balance.balance and ambient_balance (fits to both engines' renders).
 """
 
 from ..core import eevee_balance as twin
