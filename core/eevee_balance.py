@@ -90,10 +90,14 @@ def balance(view, light, normal, coefficients=COEFFICIENTS):
 
 def ambient_balance(view, light, normal, coefficients=AMBIENT_COEFFICIENTS):
     """The factor on the light less the sun's (the sky's, the haze's, the ground's) for the sand
-    seen from `view` under a sun at `light`: Cycles' sky-lit sand over EEVEE's."""
+    seen from `view` under a sun at `light`: Cycles' sky-lit sand over EEVEE's. Measured on faces
+    the sun reaches; on faces turned from it (N·L at most 0), which see no bright sky round the
+    sun, 1, easing in as the balance does (a helper's dune slopes turned from a 10° sun: EEVEE
+    +16 % of Cycles without it, +22 % with it)."""
     terms = design(*angles(view, light, normal))
     fitted = np.clip(np.exp(terms @ np.asarray(coefficients, np.float64)), *AMBIENT_RANGE)
-    return np.where(np.linalg.norm(np.asarray(light, np.float64), axis=-1) > 1e-6, fitted, 1.0)
+    facing = np.sum(_unit(light) * _unit(normal), axis=-1)
+    return 1.0 + (fitted - 1.0) * np.clip(facing / MIN_COSINE, 0.0, 1.0)
 
 
 def sheen_ambient(v, coefficients=SHEEN_AMBIENT):

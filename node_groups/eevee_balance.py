@@ -10,7 +10,7 @@ from ..core import eevee_balance as twin
 from . import helper as h
 
 NAME = "Sandscape EEVEE Balance"
-VERSION = 7
+VERSION = 8
 TREE_TYPE = "ShaderNodeTree"
 DESCRIPTION = ("Cycles' brightness of Sandscape sand over EEVEE's at this view, sun and normal: the "
                "factor the sand's EEVEE output applies")
@@ -117,13 +117,9 @@ def build(tree):
     held = _fitted(tree, monomials, twin.COEFFICIENTS, twin.BALANCE_RANGE, "Balance", fit_nodes)
     ambient = _fitted(tree, monomials, twin.AMBIENT_COEFFICIENTS, twin.AMBIENT_RANGE, "Ambient Balance",
                       fit_nodes)
-    # No sun (a zero direction): 1, both.
+    # No sun (a zero direction): 1.
     length = h.vector_math(tree, "LENGTH", inputs["Sun Direction"], label="|Sun|")
     sun = h.math(tree, "GREATER_THAN", length.outputs["Value"], 1e-6, label="A Sun")
-    ambient_less_one = h.math(tree, "SUBTRACT", ambient.outputs["Result"], 1.0)
-    ambient_or_one = h.math(tree, "MULTIPLY_ADD", ambient_less_one.outputs[0], sun.outputs[0], c=1.0,
-                            label="Ambient Balance or 1")
-    h.link(tree, ambient_or_one.outputs[0], group_out.inputs["Ambient Balance"])
     # Faces turned from the sun get no sun to correct: the fit eases to 1 as N·L falls to 0.
     facing = h.math(tree, "DIVIDE", l_dot.outputs["Value"], twin.MIN_COSINE, label="N·L ÷ Limit")
     reached = h.add_node(tree, "ShaderNodeClamp", label="Sun Reaches (0..1)", inputs={"Min": 0.0, "Max": 1.0})
@@ -133,6 +129,11 @@ def build(tree):
     result = h.math(tree, "MULTIPLY_ADD", minus_one.outputs[0], weight.outputs[0], c=1.0,
                     label="Balance or 1")
     h.link(tree, result.outputs[0], group_out.inputs["Balance"])
+    # The ambient balance too: faces turned from the sun see no bright sky round it.
+    ambient_less_one = h.math(tree, "SUBTRACT", ambient.outputs["Result"], 1.0)
+    ambient_or_one = h.math(tree, "MULTIPLY_ADD", ambient_less_one.outputs[0], weight.outputs[0], c=1.0,
+                            label="Ambient Balance or 1")
+    h.link(tree, ambient_or_one.outputs[0], group_out.inputs["Ambient Balance"])
     h.frame(tree, "View, Sun and Azimuth about the Normal", angle_nodes)
     h.frame(tree, "Fitted Ratios", fit_nodes)
     h.frame(tree, "Without a Sun, or Turned from It",

@@ -92,11 +92,13 @@ def test_the_group_bakes_as_its_twin(sandscape):
 def test_faces_turned_from_the_sun_keep_their_light():
     """The balance corrects the sun's light: a face the sun does not reach gets 1 (the fit had
     brightened shaded slip faces' sky light by up to 2.5x under a low sun ahead), and the ease
-    from the fit starts where the fit's own cosine limit does, with no step."""
+    from the fit starts where the fit's own cosine limit does, with no step. The ambient balance,
+    measured on faces the sun reaches, is 1 there too."""
     view = np.array([-0.99, 0.1, 0.09])
     normal = np.array([0.0, 0.0, 1.0])
     for height in (-0.3, -0.01, 0.0):
         assert twin.balance(view, (1.0, 0.0, height), normal) == pytest.approx(1.0)
+        assert twin.ambient_balance(view, (1.0, 0.0, height), normal) == pytest.approx(1.0)
     sine = twin.MIN_COSINE
     fitted = twin.balance(view, (np.sqrt(1 - sine ** 2), 0.0, sine), normal)
     assert fitted > 1.5  # where the ease starts, the fit brightens a lot: the ease matters
