@@ -5,9 +5,9 @@ EEVEE has neither Cycles' rough (Oren-Nayar) diffuse nor its microfiber sheen: i
 Lambert and its sheen is lit like a diffuse. Under a low sun Cycles' sand is up to 4x brighter
 seen with the sun behind (back-scatter at grazing angles), under a high sun EEVEE's is brighter,
 and at grazing views Cycles' sand gets more of the sky's light. The EEVEE output (`surface`)
-scales EEVEE's sand by min(G, 1), adds (G - 1) of the sun's light on a Lambert surface of the
-sand's colour where G > 1, and adds (K - min(G, 1)) of the ambient light at the normal times the
-sand's colour: G, the balance, corrects the sun's light and K, the ambient balance, the rest.
+scales EEVEE's sand by min(G, 1), adds (G - 1) of the sand's own sun's part (EEVEE's sand less its
+ambient) where G > 1 and the sun reaches, and adds (K - min(G, 1)) of the sand's ambient
+(`sand_ambient`): G, the balance, corrects the sun's light and K, the ambient balance, the rest.
 Both were measured on a flat plane of the sand under our sun and sky and under the sky alone
 (devtools/eevee_balance_data.py; `solve` finds them per view) and fitted here as
 exp(polynomial) in
@@ -27,7 +27,8 @@ import numpy as np
 
 MIN_COSINE = 0.05
 # The balance corrects the sun's light: on faces turned from the sun (N·L at most 0) there is none
-# to correct, and it eases from the fit to 1 as N·L falls from MIN_COSINE to 0.
+# to correct, and it eases from the fit to 1 as N·L falls from MIN_COSINE to 0 (the ambient
+# balance too: it was measured on faces the sun reaches).
 BALANCE_RANGE = (0.3, 6.5)  # the fitted balance is held inside what the measurements spanned
 AMBIENT_RANGE = (0.7, 2.0)
 DEGREE = 5
