@@ -1,7 +1,10 @@
 """The whole demo animation on one sheet: every STEP-th frame of the demo, rendered at the Draft
 preset through its compositor, in a grid (docs/film.png), to look at every part of the film.
+With --engine EEVEE the film is rendered as EEVEE renders it: its compositor, the clouds' shadow
+layer and its Draft preset (docs/film_eevee.png unless --output says otherwise).
 
-Run: .venv/bin/python devtools/film_sheet.py [--step 20] [--width 320] [--output docs/film.png]
+Run: .venv/bin/python devtools/film_sheet.py [--step 20] [--width 320] [--engine CYCLES|EEVEE]
+     [--output docs/film.png]
 """
 
 import argparse
@@ -23,8 +26,11 @@ def main(argv=None):
     parser.add_argument("--step", type=int, default=20)
     parser.add_argument("--width", type=int, default=320)
     parser.add_argument("--preset", default="DRAFT", choices=("DRAFT", "PREVIEW", "FINAL"))
-    parser.add_argument("--output", default=str(REPO / "docs" / "film.png"))
+    parser.add_argument("--engine", default="CYCLES", choices=("CYCLES", "EEVEE"))
+    parser.add_argument("--output")
     args = parser.parse_args(argv)
+    name = "film.png" if args.engine == "CYCLES" else "film_eevee.png"
+    args.output = args.output or str(REPO / "docs" / name)
     root = session.isolate()
     import bpy
 
@@ -36,6 +42,10 @@ def main(argv=None):
     scene = bpy.context.scene
     scene.render.resolution_x, scene.render.resolution_y = args.width, args.width * 9 // 16
     scene.render.resolution_percentage = 100
+    if args.engine == "EEVEE":
+        scene.render.engine = "BLENDER_EEVEE"
+        assert bpy.ops.sandscape.add_post_effects() == {"FINISHED"}  # the tree EEVEE's passes feed
+        assert bpy.ops.sandscape.add_clouds() == {"FINISHED"}  # their shadow layer, as in an EEVEE scene
     bpy.ops.sandscape.apply_quality_preset(preset=args.preset)
     frames = list(range(scene.frame_start, scene.frame_end + 1, args.step))
     if frames[-1] != scene.frame_end:
