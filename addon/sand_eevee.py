@@ -46,10 +46,11 @@ SUN_REACH = tuple(f"Sandscape EEVEE Sun Reach {part}" for part in (
 AMBIENT_KEPT, SUN_BOOSTED, LIGHT_CORRECTION = ("Sandscape EEVEE Ambient Kept", "Sandscape EEVEE Sun Boosted",
                                                "Sandscape EEVEE Light Correction")
 AMBIENT_SCALE, AMBIENT_GIVEN = "Sandscape EEVEE Ambient Scale", "Sandscape EEVEE Ambient Given"
+AMBIENT_TINTED = "Sandscape EEVEE Ambient Tinted"  # the ambient balance per channel
 NODES = (OUTPUT, BALANCE, SUN, SCALE, BOOST, BOOST_COLOR, BOTH, DOWN, UP, DOWN_HELD, UP_HELD, FRAME,
          JOURNEY_SURFACE, BOOST_LIGHT, SUN_IRRADIANCE, GLINTS_WHERE_LIT, AMBIENT_KEPT, SUN_BOOSTED,
          LIGHT_CORRECTION, AMBIENT_SCALE, AMBIENT_GIVEN, SAND_RGB, SUN_PART, SUN_PART_HELD,
-         BOOST_REACH) + SUN_LIGHT + SAND_AMBIENT + SUN_REACH
+         BOOST_REACH, AMBIENT_TINTED) + SUN_LIGHT + SAND_AMBIENT + SUN_REACH
 REACH_MIN_COSINE = 0.02  # below it the sun's light and the lamp's are both near 0: held
 
 
@@ -69,9 +70,10 @@ def attach(material, scene, look_node, look, glint=None):
         return
     # Before 2026-11-29: the boost a diffuse (it brightened the sky's light too), lit glints in the
     # shade (both looks), the dimming balance scaling the ambient; before 2026-12-07 the ambient
-    # from one probe and not balanced.
+    # from one probe and not balanced; before 2026-12-08 its balance one factor for all channels.
     older = own.node(tree, GLINTS_WHERE_LIT) is None or own.node(tree, AMBIENT) is None or (
-        not journey and any(own.node(tree, name) is None for name in (AMBIENT_KEPT, AMBIENT_SCALE, SAND_RGB)))
+        not journey and any(own.node(tree, name) is None
+                            for name in (AMBIENT_KEPT, AMBIENT_SCALE, SAND_RGB, AMBIENT_TINTED)))
     if own.node(tree, OUTPUT) is not None and ((own.node(tree, JOURNEY_SURFACE) is None) == journey or older):
         _remove(tree)  # built for the other look, or an older build
     if journey:
@@ -243,14 +245,19 @@ def _ensure_nodes(tree, look_node):
     boosted = h.vector_math(tree, "SCALE", held.outputs[0], label="Sun Part × (Balance − 1)")
     boosted.name = SUN_BOOSTED
     h.link(tree, reached.outputs[0], boosted.inputs["Scale"])
-    kept = h.vector_math(tree, "SCALE", ambient, label="Sand's Ambient × (K − min(Balance, 1))")
-    kept.name = AMBIENT_KEPT
-    # The ambient's own balance, less what the scale kept of it: (1 − min(balance, 1)) + (K − 1).
-    ambient_scale = h.math(tree, "ADD", clamped.outputs[0], balance.outputs["Ambient Balance"])
+    # The ambient's own balance per channel (K times its tint), less what the scale kept of it:
+    # (1 − min(balance, 1)) + (K tint − 1).
+    tinted = h.vector_math(tree, "SCALE", balance.outputs["Ambient Tint"], label="K × Tint")
+    tinted.name = AMBIENT_TINTED
+    h.link(tree, balance.outputs["Ambient Balance"], tinted.inputs["Scale"])
+    ambient_scale = h.vector_math(tree, "ADD", clamped.outputs[0], tinted.outputs[0])
     ambient_scale.name = AMBIENT_SCALE
-    given = h.math(tree, "SUBTRACT", ambient_scale.outputs[0], 1.0, label="Ambient Balance − min(Balance, 1)")
+    given = h.vector_math(tree, "SUBTRACT", ambient_scale.outputs[0], (1.0, 1.0, 1.0),
+                          label="K × Tint − min(Balance, 1)")
     given.name = AMBIENT_GIVEN
-    h.link(tree, given.outputs[0], kept.inputs["Scale"])
+    kept = h.vector_math(tree, "MULTIPLY", ambient, given.outputs[0],
+                         label="Sand's Ambient × (K × Tint − min(Balance, 1))")
+    kept.name = AMBIENT_KEPT
     correction = h.vector_math(tree, "ADD", boosted.outputs[0], kept.outputs[0], label="Light to Add")
     correction.name = LIGHT_CORRECTION
     boost = h.add_node(tree, "ShaderNodeEmission", name=BOOST, label="As Cycles (light added)",
@@ -263,7 +270,7 @@ def _ensure_nodes(tree, look_node):
     h.link(tree, both.outputs[0], output.inputs["Surface"])
     frame = h.frame(tree, "EEVEE: Balanced to Cycles", (sun, balance, down, clamped, scale, up, extra, color,
                                                          *made, *ambient_nodes, sand_rgb, sun_part, held,
-                                                         reached, boosted,
+                                                         reached, boosted, tinted,
                                                          ambient_scale, given, kept, correction, boost,
                                                          both, output))
     frame.name = FRAME

@@ -8,14 +8,18 @@ and at grazing views Cycles' sand gets more of the sky's light. The EEVEE output
 scales EEVEE's sand by min(G, 1), adds (G - 1) of the sand's own sun's part (EEVEE's sand less its
 ambient) where G > 1 and the sun reaches, and adds (K - min(G, 1)) of the sand's ambient
 (`sand_ambient`): G, the balance, corrects the sun's light and K, the ambient balance, the rest.
+K is a factor per channel, its scalar fit times a tint (`ambient_tint`): EEVEE's sky-lit sand was
+bluer than Cycles' at grazing views (Cycles' rough diffuse sees more of the warm horizon).
 Both were measured on a flat plane of the sand under our sun and sky and under the sky alone
 (devtools/eevee_balance_data.py; `solve` finds them per view) and fitted here as
 exp(polynomial) in
 
-    sqrt(v), sqrt(l) and a, where v = N·V, l = N·L (each at least MIN_COSINE) and a = cos of the
-    azimuth between V and L about N (a = 1: the sun in front of the camera; -1: behind it).
+    sqrt(v), sqrt(l) and p, where v = N·V, l = N·L (each at least MIN_COSINE) and p = the
+    azimuth between V and L about N over pi (0: the sun in front of the camera; 1: behind it).
 
-The square roots spread the grazing views and suns, where the balances change fastest.
+The square roots spread the grazing views and suns, where the balances change fastest; the
+azimuth is taken as an angle, not its cosine, because toward a low sun Cycles' sand dims by a
+quarter within 15 degrees of it, where the cosine hardly moves.
 
 The fits are a calibration, not physics; their reference is Cycles itself (bench/eevee.py
 measures an EEVEE frame against a Cycles one).
@@ -31,30 +35,52 @@ MIN_COSINE = 0.05
 # balance too: it was measured on faces the sun reaches).
 BALANCE_RANGE = (0.3, 6.5)  # the fitted balance is held inside what the measurements spanned
 AMBIENT_RANGE = (0.7, 2.0)
-DEGREE = 5
-# exp(sum c sqrt(v)^i sqrt(l)^j a^k) over the terms (i, j, k), total degree at most DEGREE.
-# The measured azimuths are 0, 90 and 180 degrees (a = 1, 0, -1), where a^3 = a: a's powers stop at 2.
-AZIMUTH_POWERS = 2
+DEGREE = 6
+# exp(sum c sqrt(v)^i sqrt(l)^j p^k) over the terms (i, j, k), total degree at most DEGREE, p's
+# powers at most AZIMUTH_POWERS (the measured azimuths: 0, 20, 40, 60, 90 and 180 degrees).
+AZIMUTH_POWERS = 3
 TERMS = tuple(t for t in itertools.product(range(DEGREE + 1), repeat=3)
               if sum(t) <= DEGREE and t[2] <= AZIMUTH_POWERS)
 # Fitted to devtools/eevee_balance.json (devtools/eevee_balance_data.py, Blender 5.2.3), under the
 # EEVEE world's two hemispheres (addon/sky_eevee.py), the ambient from four unlit probes.
-COEFFICIENTS = (-0.5198, -3.3614, -1.8483, -4.5304, -3.0036, 6.915, 37.5195, 33.7678, -7.6922,
-                -87.176, -46.1144, 2.4124, 78.4788, 18.8647, -23.9537, 19.2964, 22.9028, 6.3432,
-                -32.7661, -54.2328, -8.6168, 12.8758, 29.0157, 3.6657, 0.048, -0.2096, -3.2028,
-                -50.4231, -24.9169, -6.8154, 68.6246, 55.5222, 3.7493, -1.8362, -22.6291, -5.4271,
-                47.3306, 2.6035, 1.9806, -63.1907, -12.5762, 6.4873, -15.1906, 4.4039, 16.4772,
-                0.8887)
-AMBIENT_COEFFICIENTS = (-0.9215, -0.2535, 0.0273, 9.877, 0.493, 0.6654, -32.8066, 0.0498, -1.1244,
-                        53.6902, -1.0846, 0.3868, -44.3555, 0.7268, 14.6966, 1.9923, 1.3864, 0.1728,
-                        -3.1211, -3.2196, -0.3298, 5.8968, 2.4381, 0.3697, -4.655, -0.2487, 0.5311,
-                        -5.2522, -1.8578, -0.4466, 0.2261, 2.9385, 0.1268, 1.4326, -1.7067, 1.059,
-                        5.2703, 0.5953, 0.1582, -0.8521, -0.3852, -1.6853, -2.4049, 0.1346, 0.7727,
-                        0.5273)
+COEFFICIENTS = (-1.2257, 29.9966, -64.5965, 32.842, -22.6514, -21.5537, 155.9781, -82.6748, 89.2448,
+                -149.4068, -43.3949, 47.7105, -79.2574, 207.9917, -92.7495, 3.7109, -42.2615,
+                -33.7635, 43.2173, 85.2801, -31.8861, -29.3827, 27.0581, -152.3359, 248.2657,
+                -110.3879, 28.1013, 208.3017, -426.6556, 159.1204, -288.8586, 101.2395, 219.151,
+                -62.3166, 387.7691, -268.0895, -26.8193, -213.5021, 98.1781, 52.5581, -69.3103,
+                174.0748, -236.8247, 92.6381, 115.3286, -191.3532, 253.6977, -62.7722, 112.6067,
+                31.4387, -47.2478, -123.8099, 32.2486, 1.4071, 48.498, -66.9608, 62.0236, -18.8852,
+                -205.4215, -10.3302, -45.0152, 14.8461, -3.2394, 54.393, 20.033, 35.9955, 2.4655,
+                145.9648, 33.4319, -49.7244, -51.6815, -24.4838, -28.8813, 22.7879)
+AMBIENT_COEFFICIENTS = (-0.2816, 0.3279, 0.3935, -0.7992, 6.0902, -8.1502, 6.771, -0.8519, -16.3965,
+                        25.1549, -14.435, 3.5041, 14.2505, -34.818, 6.2266, -1.5318, 5.8046,
+                        26.8459, 0.2095, -17.885, -8.9053, 8.454, -0.4411, 0.2892, 2.3571, 1.728,
+                        2.2167, -11.1715, 0.2054, -3.7926, -2.4215, 13.4846, 7.9523, 0.2694, 9.6412,
+                        -5.2838, -4.7975, -13.6884, -0.0145, 6.3871, 1.5545, 0.5566, -12.6882,
+                        0.648, -6.3388, 21.6692, -2.0944, 1.9659, -6.4405, -26.0957, 2.0852,
+                        10.0924, 8.3318, -5.1777, -4.0527, 2.9754, 13.7202, -1.2079, 10.0999,
+                        -9.3432, -1.5792, 5.2091, 6.2373, -0.1334, 0.1206, -6.2311, -4.2332,
+                        -9.2675, 1.4151, -4.077, 4.7247, 2.6949, 4.4357, -2.5546)
+# The ambient balance's tint: exp(w AMBIENT_TINT_AXIS) per channel, w = sum c sqrt(v)^i sqrt(l)^j
+# p^k over TERMS with AMBIENT_TINT_COEFFICIENTS, held in TINT_RANGE. The axis is the measured
+# per-channel balances' main direction about the scalar one (their log ratios are near rank 1).
+AMBIENT_TINT_AXIS = (1.0, 0.064, -0.88)
+TINT_RANGE = (-0.1, 0.3)  # w as measured, -0.035..0.206, with a margin
+AMBIENT_TINT_COEFFICIENTS = (0.0248, -0.1881, 1.4515, -1.1606, 0.7086, -3.0304, 1.1913, 1.0891,
+                             -2.3626, 11.588, -6.9779, 0.4501, 1.6385, -16.1232, 5.0076, -0.2223,
+                             1.0865, 11.5555, -0.9723, -1.7608, -3.6062, 0.6082, 1.2316, -1.2211,
+                             -0.2346, 1.543, -1.3281, -1.4066, 1.275, -3.0667, 1.0977, 2.8383,
+                             2.9481, 0.6302, -0.3964, -2.2877, -2.1645, -1.0572, 0.7569, 1.14,
+                             -3.8275, 4.2748, -4.5326, 0.3043, 2.8485, 2.6051, 1.1787, 0.961,
+                             -0.2599, -5.6427, 0.1848, 0.6673, 2.0656, -1.8111, 2.9088, -3.513,
+                             3.5091, -0.5119, -3.3456, -2.644, -1.3252, 1.4289, 1.8886, 1.6806,
+                             1.3603, 1.9895, -0.5619, 1.277, 1.0238, -2.3292, -2.7816, -0.9174,
+                             0.5683, 0.9976)
 # W(v) = sum_k SHEEN_AMBIENT[k] v^k per channel (`sheen_ambient`), fitted to the same measurements
 # (EEVEE's sand under the sky alone over the ambient light at its normal, less the sand's colour).
-SHEEN_AMBIENT = ((0.1021, 0.1363, 0.1603), (-0.2129, -0.2809, -0.3279), (0.1589, 0.2104, 0.2461),
-                 (-0.0421, -0.0559, -0.0657))
+SHEEN_AMBIENT = ((0.1019, 0.1361, 0.1601), (-0.2091, -0.2774, -0.3252), (0.1509, 0.2031, 0.2404),
+                 (-0.0378, -0.0519, -0.0626))
+
 
 def _unit(vector):
     vector = np.asarray(vector, np.float64)
@@ -63,7 +89,7 @@ def _unit(vector):
 
 
 def angles(view, light, normal):
-    """(v, l, a) as the node group computes them; view and light point away from the surface."""
+    """(v, l, p) as the node group computes them; view and light point away from the surface."""
     view, light, normal = _unit(view), _unit(light), _unit(normal)
     v = np.sum(view * normal, axis=-1)
     l_ = np.sum(light * normal, axis=-1)
@@ -72,13 +98,13 @@ def angles(view, light, normal):
     lengths = np.linalg.norm(across_v, axis=-1) * np.linalg.norm(across_l, axis=-1)
     # a = 1 with the sun in front of the camera: the view's across part points away from the sun's.
     a = -np.sum(across_v * across_l, axis=-1) / np.maximum(lengths, 1e-6)
-    return np.maximum(v, MIN_COSINE), np.maximum(l_, MIN_COSINE), np.clip(a, -1.0, 1.0)
+    return np.maximum(v, MIN_COSINE), np.maximum(l_, MIN_COSINE), np.arccos(np.clip(a, -1.0, 1.0)) / np.pi
 
 
-def design(v, l_, a):
+def design(v, l_, p):
     """The fit's terms for these angles: (..., len(TERMS))."""
     root_v, root_l = np.sqrt(v), np.sqrt(l_)
-    return np.stack([root_v ** i * root_l ** j * a ** k for i, j, k in TERMS], axis=-1)
+    return np.stack([root_v ** i * root_l ** j * p ** k for i, j, k in TERMS], axis=-1)
 
 
 def balance(view, light, normal, coefficients=COEFFICIENTS):
@@ -99,6 +125,27 @@ def ambient_balance(view, light, normal, coefficients=AMBIENT_COEFFICIENTS):
     fitted = np.clip(np.exp(terms @ np.asarray(coefficients, np.float64)), *AMBIENT_RANGE)
     facing = np.sum(_unit(light) * _unit(normal), axis=-1)
     return 1.0 + (fitted - 1.0) * np.clip(facing / MIN_COSINE, 0.0, 1.0)
+
+
+def ambient_tint(view, light, normal, coefficients=None):
+    """The ambient balance's factor per channel (..., 3) about its scalar fit: warmer than 1 in
+    red where Cycles' sky-lit sand is warmer than EEVEE's; 1 on faces turned from the sun."""
+    coefficients = AMBIENT_TINT_COEFFICIENTS if coefficients is None else coefficients
+    terms = design(*angles(view, light, normal))
+    warmth = np.clip(terms @ np.asarray(coefficients, np.float64), *TINT_RANGE)
+    facing = np.sum(_unit(light) * _unit(normal), axis=-1)
+    warmth = warmth * np.clip(facing / MIN_COSINE, 0.0, 1.0)
+    return np.exp(warmth[..., None] * np.asarray(AMBIENT_TINT_AXIS, np.float64))
+
+
+def fit_tint(v, l_, p, ratio):
+    """Least-squares AMBIENT_TINT_COEFFICIENTS: w over the measured angles from the per-channel
+    ratios (..., 3) of the balance needed to the scalar one, w = log(ratio) projected on the axis."""
+    axis = np.asarray(AMBIENT_TINT_AXIS, np.float64)
+    warmth = np.log(np.asarray(ratio, np.float64)) @ axis / (axis @ axis)
+    matrix = design(np.maximum(v, MIN_COSINE), np.maximum(l_, MIN_COSINE), p)
+    coefficients, *_ = np.linalg.lstsq(matrix, warmth, rcond=None)
+    return tuple(float(c) for c in coefficients)
 
 
 def sheen_ambient(v, coefficients=SHEEN_AMBIENT):
@@ -146,10 +193,10 @@ def solve(full, sky):
     return float(1.0 + boost), float(ambient)
 
 
-def fit(v, l_, a, ratio, weights=None):
+def fit(v, l_, p, ratio, weights=None):
     """Least-squares coefficients of log(balance) over the measured angles, each row weighted by
     `weights` (None: 1)."""
-    matrix = design(np.maximum(v, MIN_COSINE), np.maximum(l_, MIN_COSINE), a)
+    matrix = design(np.maximum(v, MIN_COSINE), np.maximum(l_, MIN_COSINE), p)
     weights = np.ones(len(matrix)) if weights is None else np.asarray(weights, np.float64)
     coefficients, *_ = np.linalg.lstsq(matrix * weights[:, None], np.log(ratio) * weights, rcond=None)
     return tuple(float(c) for c in coefficients)

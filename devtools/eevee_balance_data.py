@@ -1,5 +1,5 @@
-"""Measure Cycles' brightness of our sand against EEVEE's and fit core.eevee_balance's two sets of
-coefficients (the balance on the sun's light, the ambient balance on the rest).
+"""Measure Cycles' brightness of our sand against EEVEE's and fit core.eevee_balance's coefficients
+(the balance on the sun's light, the ambient balance on the rest and that one's tint per channel).
 
 A flat plane of the default sand (Physical Sand, lit glints, no ripples; one output for both
 engines, no balance) under Add Atmosphere's sun and sky (no haze, no dust), seen through a long
@@ -8,8 +8,8 @@ EEVEE (16 samples), with the sun lamp and without it (the sky alone); and, per s
 plane showing the ambient light at its normal as the sand's EEVEE output finds it (four unlit
 probes; a white Lambert surface's). Linear means. W(v), what EEVEE's sand adds to that light
 times its colour, is fitted to the sky-alone renders; core.eevee_balance.solve then finds the two
-balances per view. Prints the fitted coefficients (paste them into core/eevee_balance.py) and the
-fits' errors.
+balances per view, and the sky-alone renders per channel the ambient balance's tint. Prints the
+fitted coefficients (paste them into core/eevee_balance.py) and the fits' errors.
 
 Run: .venv/bin/python devtools/eevee_balance_data.py [--json OUT] [--from-json IN]
 (devtools/eevee_balance.json holds the measurements the coefficients were fitted to.)
@@ -32,7 +32,7 @@ from core.sand import SAND_COLOR  # noqa: E402
 
 SUN_ELEVATIONS = (5, 10, 20, 35, 55, 80)
 VIEW_ELEVATIONS = (3, 8, 15, 30, 50, 80)
-AZIMUTHS = (0, 90, 180)  # the camera's heading from the sun's: 0 looks towards the sun
+AZIMUTHS = (0, 20, 40, 60, 90, 180)  # the camera's heading from the sun's: 0 looks towards the sun
 PLAIN_OFFSET = 5000.0
 
 
@@ -84,7 +84,7 @@ def _mean(scene):
     return readback.render(scene)[..., :3].reshape(-1, 3).mean(0)
 
 
-def measure():
+def measure(azimuths=AZIMUTHS):
     bpy, scene, camera = _calibration_scene()
     settings = scene.sandscape_atmosphere
     rows = []
@@ -94,7 +94,7 @@ def measure():
         lamp = next(obj for obj in scene.objects if obj.type == "LIGHT")
         same = []
         for view in VIEW_ELEVATIONS:
-            for azimuth in AZIMUTHS:
+            for azimuth in azimuths:
                 camera.rotation_euler = (math.radians(90 - view), 0.0, math.radians(azimuth))
                 row = {"sun": sun, "view": view, "az": azimuth}
                 for hidden, tag in ((False, ""), (True, "_sky")):
@@ -163,11 +163,24 @@ def measured_balance(rows, sheen=twin.SHEEN_AMBIENT):
     return view, light, balance, ambient
 
 
+def measured_tint(rows, balance, ambient, sheen=twin.SHEEN_AMBIENT):
+    """The ambient balance needed per channel over the scalar one (rows, 3), under the sky alone
+    with the scalar balance: s E + (K_c - s) A = C per channel, s = min(balance, 1)."""
+    ratios = []
+    for row, g, k in zip(rows, balance, ambient, strict=True):
+        tint = np.array(SAND_COLOR[:3]) + twin.sheen_ambient(view_cosine(row), sheen)
+        scale, light = min(g, 1.0), np.array(row["ambient_sky"]) * tint
+        needed = scale + (np.array(row["cycles_sky"]) - scale * np.array(row["eevee_sky"])) / light
+        ratios.append(needed / k)
+    return np.array(ratios)
+
+
 def predicted(rows, view, light):
     """EEVEE's output as the twin's W(v) and fitted balances make it, per row and channel, under
     sun and sky (the sun reaching) and under the sky alone: two arrays (rows, 3)."""
     balance = twin.balance(view, light, (0.0, 0.0, 1.0))
-    ambient_balance = twin.ambient_balance(view, light, (0.0, 0.0, 1.0))
+    ambient_balance = twin.ambient_balance(view, light, (0.0, 0.0, 1.0))[:, None] * \
+        twin.ambient_tint(view, light, (0.0, 0.0, 1.0))
     lit, sky = [], []
     for row, g, k in zip(rows, balance, ambient_balance, strict=True):
         for tag, reach, out in (("", 1.0, lit), ("_sky", 0.0, sky)):
@@ -177,9 +190,10 @@ def predicted(rows, view, light):
 
 
 def fit_all(rows):
-    """(SHEEN_AMBIENT, COEFFICIENTS, AMBIENT_COEFFICIENTS) fitted to the rows: W(v) first, then
-    the two balances it implies; the balance weighted by how much of Cycles' brightness its sun's
-    part makes (a change in the balance changes the brightness by that much)."""
+    """(SHEEN_AMBIENT, COEFFICIENTS, AMBIENT_COEFFICIENTS, AMBIENT_TINT_COEFFICIENTS) fitted to
+    the rows: W(v) first, then the two balances it implies, then the ambient balance's tint; the
+    balance weighted by how much of Cycles' brightness its sun's part makes (a change in the
+    balance changes the brightness by that much)."""
     v_cos, excess = sheen_excess(rows)
     sheen = twin.fit_sheen_ambient(v_cos, excess)
     view, light, balance, ambient = measured_balance(rows, sheen)
@@ -187,18 +201,23 @@ def fit_all(rows):
     full = [_lights(row, sheen)[0] for row in rows]
     share = [abs(lit["eevee"] - lit["ambient"]) / lit["cycles"] for lit in full]
     weights = np.maximum(balance * np.array(share), 0.02)
-    return sheen, twin.fit(*angles, balance, weights), twin.fit(*angles, ambient)
+    tint = twin.fit_tint(*angles, measured_tint(rows, balance, ambient, sheen))
+    return sheen, twin.fit(*angles, balance, weights), twin.fit(*angles, ambient), tint
 
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--json", help="write the measurements here")
     parser.add_argument("--from-json", help="fit these measurements instead of rendering")
+    parser.add_argument("--azimuths", type=float, nargs="+", default=list(AZIMUTHS),
+                        help="measure these azimuths (with --from-json: added to its rows)")
     args = parser.parse_args(argv)
-    rows = json.loads(pathlib.Path(args.from_json).read_text()) if args.from_json else measure()
+    rows = json.loads(pathlib.Path(args.from_json).read_text()) if args.from_json else []
+    if not args.from_json or args.azimuths != list(AZIMUTHS):
+        rows += measure(args.azimuths)
     if args.json:
         pathlib.Path(args.json).write_text(json.dumps(rows, indent=1))
-    sheen, balance_fit, ambient_fit = fit_all(rows)
+    sheen, balance_fit, ambient_fit, tint_fit = fit_all(rows)
     v_cos, excess = sheen_excess(rows)
     print(f"balance fit: SHEEN_AMBIENT = {sheen}")
     print(f"balance fit: W {excess.min():.3f}..{excess.max():.3f}, fitted against measured: largest "
@@ -211,6 +230,11 @@ def main(argv=None):
         print(f"balance fit: {name} = {tuple(round(c, 4) for c in coefficients)}")
         print(f"balance fit: needed {needed.min():.2f}..{needed.max():.2f}; fitted against needed: "
               f"mean |error| {np.abs(error).mean():.1%}, largest {np.abs(error).max():.1%}")
+    print(f"balance fit: AMBIENT_TINT_COEFFICIENTS = {tuple(round(c, 4) for c in tint_fit)}")
+    needed = measured_tint(rows, balance, ambient, sheen)
+    error = twin.ambient_tint(view, light, (0.0, 0.0, 1.0), tint_fit) / needed - 1.0
+    print(f"balance fit: the tint against the per-channel ratio needed: largest |error| "
+          f"{np.abs(error).max():.1%}")
     parts = ("sun and sky", "sky alone")
     for part, out, key in zip(parts, predicted(rows, view, light), ("cycles", "cycles_sky"),
                               strict=True):

@@ -2,15 +2,18 @@
 here, from the view, the sun and the normal, in two factors: Balance on the sun's light and
 Ambient Balance on the rest. EEVEE lacks Cycles' rough diffuse and microfiber sheen, so its sand
 is dim under a low sun and bright under a high one, and gets less of the sky's light at grazing
-views. The sand material's EEVEE output applies both (Cycles' output does not use them).
-Twin: core.eevee_balance.balance and ambient_balance (fits to both engines' renders).
+views. Ambient Tint makes the second a factor per channel (EEVEE's sky-lit sand is bluer at
+grazing views). The sand material's EEVEE output applies them (Cycles' output does not).
+Twin: core.eevee_balance.balance, ambient_balance and ambient_tint (fits to both engines' renders).
 """
+
+import math
 
 from ..core import eevee_balance as twin
 from . import helper as h
 
 NAME = "Sandscape EEVEE Balance"
-VERSION = 8
+VERSION = 9  # 9: the ambient balance's tint; the azimuth as an angle, degree 6
 TREE_TYPE = "ShaderNodeTree"
 DESCRIPTION = ("Cycles' brightness of Sandscape sand over EEVEE's at this view, sun and normal: the "
                "factor the sand's EEVEE output applies")
@@ -24,7 +27,9 @@ INPUTS = {  # name -> (type, description, default, min, max, subtype); append on
 OUTPUTS = {"Balance": ("NodeSocketFloat", "Cycles' brightness over EEVEE's in the sun's light (1 without a "
                        "sun)"),
            "Ambient Balance": ("NodeSocketFloat", "Cycles' brightness over EEVEE's in the light less the "
-                               "sun's (the sky's, the haze's, the ground's)")}
+                               "sun's (the sky's, the haze's, the ground's)"),
+           "Ambient Tint": ("NodeSocketColor", "The ambient balance per channel over Ambient Balance (white "
+                            "without a sun)")}
 
 
 def _clamped_cosine(tree, a, b, label):
@@ -34,7 +39,7 @@ def _clamped_cosine(tree, a, b, label):
 
 
 def _monomials(tree, powers, made):
-    """√v^i √l^j a^k for each of twin.TERMS, each made once (both fits share them): sockets, None
+    """√v^i √l^j p^k for each of twin.TERMS, each made once (both fits share them): sockets, None
     for the constant term (nodes to `made`)."""
     sockets = []
     for exponents in twin.TERMS:
@@ -50,6 +55,16 @@ def _monomials(tree, powers, made):
 
 def _fitted(tree, monomials, coefficients, limits, label, made):
     """exp(sum c m) over the monomials, held in `limits`: the Clamp node (nodes to `made`)."""
+    exp = h.math(tree, "EXPONENT", _polynomial(tree, monomials, coefficients, made), label=label)
+    held = h.add_node(tree, "ShaderNodeClamp", label=f"{label} in the Fitted Range",
+                      inputs={"Min": limits[0], "Max": limits[1]})
+    h.link(tree, exp.outputs[0], held.inputs["Value"])
+    made += [exp, held]
+    return held
+
+
+def _polynomial(tree, monomials, coefficients, made):
+    """sum c m over the monomials: its socket (nodes to `made`)."""
     total = None
     for term, coefficient in zip(monomials, coefficients, strict=True):
         if term is None:
@@ -60,12 +75,24 @@ def _fitted(tree, monomials, coefficients, limits, label, made):
             node = h.math(tree, "MULTIPLY_ADD", term, coefficient, c=total, label=f"× {coefficient:.4f} +")
         made.append(node)
         total = node.outputs[0]
-    exp = h.math(tree, "EXPONENT", total, label=label)
-    held = h.add_node(tree, "ShaderNodeClamp", label=f"{label} in the Fitted Range",
-                      inputs={"Min": limits[0], "Max": limits[1]})
-    h.link(tree, exp.outputs[0], held.inputs["Value"])
-    made += [exp, held]
-    return held
+    return total
+
+
+def _tint(tree, monomials, weight, made):
+    """exp(w axis) per channel, w the tint's polynomial held in its range and eased by `weight`
+    (the sun on the face): the Combine Color node (nodes to `made`)."""
+    warmth = h.add_node(tree, "ShaderNodeClamp", label="Warmth in the Fitted Range",
+                        inputs={"Min": twin.TINT_RANGE[0], "Max": twin.TINT_RANGE[1]})
+    h.link(tree, _polynomial(tree, monomials, twin.AMBIENT_TINT_COEFFICIENTS, made), warmth.inputs["Value"])
+    eased = h.math(tree, "MULTIPLY", warmth.outputs["Result"], weight, label="Warmth or 0")
+    combine = h.add_node(tree, "ShaderNodeCombineColor", label="Ambient Tint")
+    made += [warmth, eased, combine]
+    for channel, along in zip(combine.inputs[:3], twin.AMBIENT_TINT_AXIS, strict=True):
+        exp = h.math(tree, "MULTIPLY", eased.outputs[0], along, label=f"× {along:g}")
+        power = h.math(tree, "EXPONENT", exp.outputs[0])
+        h.link(tree, power.outputs[0], channel)
+        made += [exp, power]
+    return combine
 
 
 def build(tree):
@@ -94,19 +121,23 @@ def build(tree):
     ahead = h.math(tree, "MULTIPLY", ratio.outputs[0], -1.0, label="cos Azimuth (1: Sun Ahead)")
     a = h.add_node(tree, "ShaderNodeClamp", label="−1..1", inputs={"Min": -1.0, "Max": 1.0})
     h.link(tree, ahead.outputs[0], a.inputs["Value"])
+    # The azimuth as an angle over pi (0: sun ahead): the fits change fastest near 0, where its
+    # cosine hardly moves.
+    angle = h.math(tree, "ARCCOSINE", a.outputs["Result"], label="Azimuth")
+    azimuth = h.math(tree, "MULTIPLY", angle.outputs[0], 1.0 / math.pi, label="Azimuth ÷ π (0: Sun Ahead)")
     angle_nodes = [*normal_nodes, geometry, light, v, v_dot, l_, l_dot, dot, *lengths, product, bounded,
-                   ratio, ahead, a]
+                   ratio, ahead, a, angle, azimuth]
     for _, made in across:
         angle_nodes += made
 
-    # exp(sum c √v^i √l^j a^k), held in the fitted range; each variable's powers made once.
+    # exp(sum c √v^i √l^j p^k), held in the fitted range; each variable's powers made once.
     fit_nodes = []
     powers = []
     roots = [h.math(tree, "SQRT", cosine.outputs[0], label=f"√{name}")
              for cosine, name in ((v, "N·V"), (l_, "N·L"))]
     fit_nodes += roots
     for variable, highest in ((roots[0].outputs[0], twin.DEGREE), (roots[1].outputs[0], twin.DEGREE),
-                              (a.outputs[0], twin.AZIMUTH_POWERS)):
+                              (azimuth.outputs[0], twin.AZIMUTH_POWERS)):
         made = [None, variable]
         for _ in range(2, highest + 1):
             node = h.math(tree, "MULTIPLY", made[-1], variable)
@@ -134,6 +165,8 @@ def build(tree):
     ambient_or_one = h.math(tree, "MULTIPLY_ADD", ambient_less_one.outputs[0], weight.outputs[0], c=1.0,
                             label="Ambient Balance or 1")
     h.link(tree, ambient_or_one.outputs[0], group_out.inputs["Ambient Balance"])
+    tint = _tint(tree, monomials, weight.outputs[0], fit_nodes)
+    h.link(tree, tint.outputs[0], group_out.inputs["Ambient Tint"])
     h.frame(tree, "View, Sun and Azimuth about the Normal", angle_nodes)
     h.frame(tree, "Fitted Ratios", fit_nodes)
     h.frame(tree, "Without a Sun, or Turned from It",

@@ -123,9 +123,16 @@ def test_an_older_balance_boosting_the_sky_too_is_rebuilt(sandscape):
     tree.nodes.remove(tree.nodes[sand_eevee.AMBIENT_SCALE])
     assert bpy.ops.sandscape.add_sand_material() == {"FINISHED"}
     assert sorted(node.name for node in tree.nodes) == fresh
-    given = source(tree.nodes[sand_eevee.AMBIENT_KEPT].inputs["Scale"]).node
+    given = source(tree.nodes[sand_eevee.AMBIENT_KEPT].inputs[1]).node
     scale = source(given.inputs[0]).node
-    assert source(scale.inputs[1]) == tree.nodes[sand_eevee.BALANCE].outputs["Ambient Balance"]
+    tinted = source(scale.inputs[1]).node
+    assert source(tinted.inputs["Scale"]) == tree.nodes[sand_eevee.BALANCE].outputs["Ambient Balance"]
+    # A build whose ambient balance was one factor for all channels (before 2026-12-08).
+    tree.nodes.remove(tinted)
+    assert bpy.ops.sandscape.add_sand_material() == {"FINISHED"}
+    assert sorted(node.name for node in tree.nodes) == fresh
+    tinted = tree.nodes[sand_eevee.AMBIENT_TINTED]
+    assert source(tinted.inputs[0]) == tree.nodes[sand_eevee.BALANCE].outputs["Ambient Tint"]
 
 
 def test_the_sands_ambient_follows_its_twin(sandscape):
