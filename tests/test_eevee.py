@@ -192,9 +192,10 @@ def test_sand_in_eevee_is_as_bright_as_in_cycles(eevee_scene, sandscape, elevati
     and a diffuse-like sheen against Cycles' rough diffuse and microfiber sheen). The sun behind the
     camera at 15° and 70°, ahead at 55° (there the one balance of 2026-12-05 left red +19 %), and
     8° high 30° off ahead (neither a measured sun nor azimuth: Balance v8, fitted on azimuths 0,
-    90 and 180° alone, was +28 % there through a long lens 15° down). Luminance when written (v9), on 5.2: -7.2 % at 15°
-    (-55.5 % without the output), -0.8 % at 55° ahead (+72.7 %), -2.5 % at 70° (+13.4 %), -1.0 %
-    at 8° (-11.4 %); v8 on 5.0: -12.7 % (blue -19.9 %), +0.0 % (blue -9.1 %), -3.2 %."""
+    90 and 180° alone, was +28 % there through a long lens 15° down). Luminance when written
+    (v9), on 5.2: -7.2 % at 15° (-55.5 % without the output), -0.8 % at 55° ahead (+72.7 %),
+    -2.5 % at 70° (+13.4 %), -1.0 % at 8° (-11.4 %); v8 on 5.0: -12.7 % (blue -19.9 %), +0.0 %
+    (blue -9.1 %), -3.2 %."""
     bpy.ops.mesh.primitive_plane_add(size=400)
     ground = bpy.context.active_object
     assert bpy.ops.sandscape.add_sand_material() == {"FINISHED"}
