@@ -13,7 +13,7 @@ from ..core import eevee_balance as twin
 from . import helper as h
 
 NAME = "Sandscape EEVEE Balance"
-VERSION = 9  # 9: the ambient balance's tint; the azimuth as an angle, degree 6
+VERSION = 10  # 9: the ambient balance's tint, the azimuth as an angle; 10: the fits as one vector chain
 TREE_TYPE = "ShaderNodeTree"
 DESCRIPTION = ("Cycles' brightness of Sandscape sand over EEVEE's at this view, sun and normal: the "
                "factor the sand's EEVEE output applies")
@@ -53,9 +53,32 @@ def _monomials(tree, powers, made):
     return sockets
 
 
-def _fitted(tree, monomials, coefficients, limits, label, made):
-    """exp(sum c m) over the monomials, held in `limits`: the Clamp node (nodes to `made`)."""
-    exp = h.math(tree, "EXPONENT", _polynomial(tree, monomials, coefficients, made), label=label)
+def _polynomials(tree, monomials, made):
+    """The three fits' sums at once, (sum c_G m, sum c_K m, sum c_w m) over the monomials, as one
+    chain of vector multiply-adds (a third of the nodes, and of the shader's compile time, of
+    three scalar chains): the Separate XYZ node (nodes to `made`)."""
+    total = None
+    for term, *coefficients in zip(monomials, twin.COEFFICIENTS, twin.AMBIENT_COEFFICIENTS,
+                                   twin.AMBIENT_TINT_COEFFICIENTS, strict=True):
+        label = "(" + ", ".join(f"{c:.4f}" for c in coefficients) + ")"
+        if term is None:
+            node = h.vector_math(tree, "ADD", tuple(coefficients), (0.0, 0.0, 0.0), label=label)
+        elif total is None:
+            node = h.vector_math(tree, "MULTIPLY", term, tuple(coefficients), label=f"× {label}")
+        else:
+            node = h.vector_math(tree, "MULTIPLY_ADD", term, tuple(coefficients), c=total,
+                                 label=f"× {label} +")
+        made.append(node)
+        total = node.outputs[0]
+    sums = h.add_node(tree, "ShaderNodeSeparateXYZ", label="Balance, Ambient Balance, Warmth (logs)")
+    h.link(tree, total, sums.inputs[0])
+    made.append(sums)
+    return sums
+
+
+def _fitted(tree, log, limits, label, made):
+    """exp(log) held in `limits`: the Clamp node (nodes to `made`)."""
+    exp = h.math(tree, "EXPONENT", log, label=label)
     held = h.add_node(tree, "ShaderNodeClamp", label=f"{label} in the Fitted Range",
                       inputs={"Min": limits[0], "Max": limits[1]})
     h.link(tree, exp.outputs[0], held.inputs["Value"])
@@ -63,27 +86,12 @@ def _fitted(tree, monomials, coefficients, limits, label, made):
     return held
 
 
-def _polynomial(tree, monomials, coefficients, made):
-    """sum c m over the monomials: its socket (nodes to `made`)."""
-    total = None
-    for term, coefficient in zip(monomials, coefficients, strict=True):
-        if term is None:
-            node = h.math(tree, "ADD", coefficient, 0.0, label=f"{coefficient:.4f}")
-        elif total is None:
-            node = h.math(tree, "MULTIPLY", term, coefficient, label=f"× {coefficient:.4f}")
-        else:
-            node = h.math(tree, "MULTIPLY_ADD", term, coefficient, c=total, label=f"× {coefficient:.4f} +")
-        made.append(node)
-        total = node.outputs[0]
-    return total
-
-
-def _tint(tree, monomials, weight, made):
+def _tint(tree, warmth_sum, weight, made):
     """exp(w axis) per channel, w the tint's polynomial held in its range and eased by `weight`
     (the sun on the face): the Combine Color node (nodes to `made`)."""
     warmth = h.add_node(tree, "ShaderNodeClamp", label="Warmth in the Fitted Range",
                         inputs={"Min": twin.TINT_RANGE[0], "Max": twin.TINT_RANGE[1]})
-    h.link(tree, _polynomial(tree, monomials, twin.AMBIENT_TINT_COEFFICIENTS, made), warmth.inputs["Value"])
+    h.link(tree, warmth_sum, warmth.inputs["Value"])
     eased = h.math(tree, "MULTIPLY", warmth.outputs["Result"], weight, label="Warmth or 0")
     combine = h.add_node(tree, "ShaderNodeCombineColor", label="Ambient Tint")
     made += [warmth, eased, combine]
@@ -145,9 +153,9 @@ def build(tree):
             made.append(node.outputs[0])
         powers.append(made)
     monomials = _monomials(tree, powers, fit_nodes)
-    held = _fitted(tree, monomials, twin.COEFFICIENTS, twin.BALANCE_RANGE, "Balance", fit_nodes)
-    ambient = _fitted(tree, monomials, twin.AMBIENT_COEFFICIENTS, twin.AMBIENT_RANGE, "Ambient Balance",
-                      fit_nodes)
+    sums = _polynomials(tree, monomials, fit_nodes)
+    held = _fitted(tree, sums.outputs["X"], twin.BALANCE_RANGE, "Balance", fit_nodes)
+    ambient = _fitted(tree, sums.outputs["Y"], twin.AMBIENT_RANGE, "Ambient Balance", fit_nodes)
     # No sun (a zero direction): 1.
     length = h.vector_math(tree, "LENGTH", inputs["Sun Direction"], label="|Sun|")
     sun = h.math(tree, "GREATER_THAN", length.outputs["Value"], 1e-6, label="A Sun")
@@ -165,7 +173,7 @@ def build(tree):
     ambient_or_one = h.math(tree, "MULTIPLY_ADD", ambient_less_one.outputs[0], weight.outputs[0], c=1.0,
                             label="Ambient Balance or 1")
     h.link(tree, ambient_or_one.outputs[0], group_out.inputs["Ambient Balance"])
-    tint = _tint(tree, monomials, weight.outputs[0], fit_nodes)
+    tint = _tint(tree, sums.outputs["Z"], weight.outputs[0], fit_nodes)
     h.link(tree, tint.outputs[0], group_out.inputs["Ambient Tint"])
     h.frame(tree, "View, Sun and Azimuth about the Normal", angle_nodes)
     h.frame(tree, "Fitted Ratios", fit_nodes)
