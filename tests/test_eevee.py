@@ -180,15 +180,18 @@ def test_dust_transmittance_per_channel_in_eevee(eevee_scene, sandscape):
 
 
 # 55° ahead in make stress (22 s; 5.0's make test went past its 10 minutes): make test checks the
-# balances there on the measured views (test_eevee_balance.py).
-@pytest.mark.parametrize("elevation,azimuth", [(15.0, 150.0),
-                                               pytest.param(55.0, 0.0, marks=pytest.mark.sweep),
-                                               pytest.param(70.0, 150.0, marks=pytest.mark.sweep),
-                                               pytest.param(8.0, 30.0, marks=pytest.mark.sweep)])
-def test_sand_in_eevee_is_as_bright_as_in_cycles(eevee_scene, sandscape, elevation, azimuth):
+# balances there on the measured views (test_eevee_balance.py). make test's 15° case leaves out
+# EEVEE without the output (a second shader compile, 15-20 s); make stress has it.
+@pytest.mark.parametrize("elevation,azimuth,without_output", [
+    (15.0, 150.0, False),
+    pytest.param(15.0, 150.0, True, marks=pytest.mark.sweep),
+    pytest.param(55.0, 0.0, True, marks=pytest.mark.sweep),
+    pytest.param(70.0, 150.0, True, marks=pytest.mark.sweep),
+    pytest.param(8.0, 30.0, True, marks=pytest.mark.sweep)])
+def test_sand_in_eevee_is_as_bright_as_in_cycles(eevee_scene, sandscape, elevation, azimuth, without_output):
     """Flat sand with ripples under Add Atmosphere's sun, dust and haze, at eye level: EEVEE's mean
     brightness (luminance) over the ground within the issue's 15 % of Cycles' with the sand's EEVEE
-    output, each channel within 25 %, and at most half as far off as without it (Lambert diffuse
+    output, each channel within 25 %, and (make stress) at most half as far off as without it (Lambert diffuse
     and a diffuse-like sheen against Cycles' rough diffuse and microfiber sheen). The sun behind the
     camera at 15° and 70°, ahead at 55° (there the one balance of 2026-12-05 left red +19 %), and
     8° high 30° off ahead (neither a measured sun nor azimuth: Balance v8, fitted on azimuths 0,
@@ -211,16 +214,19 @@ def test_sand_in_eevee_is_as_bright_as_in_cycles(eevee_scene, sandscape, elevati
         return readback.render(eevee_scene)[: SIZE[1] // 2, :, :3].astype(np.float64).mean((0, 1))
 
     cycles, balanced = ground_mean("CYCLES"), ground_mean("BLENDER_EEVEE")
-    material = ground.active_material
-    sandscape.addon.sand_eevee.attach(material, eevee_scene, sandscape.addon.sand.look_node(material), None)
-    plain = ground_mean("BLENDER_EEVEE")
     luminance = np.array((0.2126, 0.7152, 0.0722))
-    brightness, without = (eevee @ luminance / (cycles @ luminance) - 1.0 for eevee in (balanced, plain))
+    brightness = balanced @ luminance / (cycles @ luminance) - 1.0
     print(f"sun {elevation:g}° at {azimuth:g}°: EEVEE against Cycles {np.round(balanced / cycles - 1, 3)} "
-          f"(luminance {brightness:+.3f}) balanced, {np.round(plain / cycles - 1, 3)} ({without:+.3f}) "
-          "without")
+          f"(luminance {brightness:+.3f}) balanced")
     assert abs(brightness) <= 0.15 and np.abs(balanced / cycles - 1.0).max() <= 0.25
-    assert abs(brightness) <= 0.5 * abs(without)
+    if without_output:
+        material, addon = ground.active_material, sandscape.addon
+        addon.sand_eevee.attach(material, eevee_scene, addon.sand.look_node(material), None)
+        plain = ground_mean("BLENDER_EEVEE")
+        without = plain @ luminance / (cycles @ luminance) - 1.0
+        print(f"sun {elevation:g}° at {azimuth:g}°: without the output {np.round(plain / cycles - 1, 3)} "
+              f"({without:+.3f})")
+        assert abs(brightness) <= 0.5 * abs(without)
 
 
 @pytest.mark.parametrize("elevation", [10, pytest.param(30, marks=pytest.mark.sweep),
