@@ -109,10 +109,16 @@ def design(v, l_, p):
 
 def balance(view, light, normal, coefficients=COEFFICIENTS):
     """The balance for the sand seen from `view` under a sun at `light`."""
-    terms = design(*angles(view, light, normal))
-    fitted = np.clip(np.exp(terms @ np.asarray(coefficients, np.float64)), *BALANCE_RANGE)
+    log, sun_on_face = _fitted_log(view, light, normal, coefficients)
+    return 1.0 + (np.clip(np.exp(log), *BALANCE_RANGE) - 1.0) * sun_on_face
+
+
+def _fitted_log(view, light, normal, coefficients):
+    """(sum c m over the fit's terms at these angles, the sun on the face: 0 where N·L is at most
+    0, easing to 1 at MIN_COSINE); the fits ease to their value without a correction by it."""
+    log = design(*angles(view, light, normal)) @ np.asarray(coefficients, np.float64)
     facing = np.sum(_unit(light) * _unit(normal), axis=-1)
-    return 1.0 + (fitted - 1.0) * np.clip(facing / MIN_COSINE, 0.0, 1.0)
+    return log, np.clip(facing / MIN_COSINE, 0.0, 1.0)
 
 
 def ambient_balance(view, light, normal, coefficients=AMBIENT_COEFFICIENTS):
@@ -121,20 +127,15 @@ def ambient_balance(view, light, normal, coefficients=AMBIENT_COEFFICIENTS):
     the sun reaches; on faces turned from it (N·L at most 0), which see no bright sky round the
     sun, 1, easing in as the balance does (a helper's dune slopes turned from a 10° sun: EEVEE
     +16 % of Cycles without it, +22 % with it)."""
-    terms = design(*angles(view, light, normal))
-    fitted = np.clip(np.exp(terms @ np.asarray(coefficients, np.float64)), *AMBIENT_RANGE)
-    facing = np.sum(_unit(light) * _unit(normal), axis=-1)
-    return 1.0 + (fitted - 1.0) * np.clip(facing / MIN_COSINE, 0.0, 1.0)
+    log, sun_on_face = _fitted_log(view, light, normal, coefficients)
+    return 1.0 + (np.clip(np.exp(log), *AMBIENT_RANGE) - 1.0) * sun_on_face
 
 
-def ambient_tint(view, light, normal, coefficients=None):
+def ambient_tint(view, light, normal, coefficients=AMBIENT_TINT_COEFFICIENTS):
     """The ambient balance's factor per channel (..., 3) about its scalar fit: warmer than 1 in
     red where Cycles' sky-lit sand is warmer than EEVEE's; 1 on faces turned from the sun."""
-    coefficients = AMBIENT_TINT_COEFFICIENTS if coefficients is None else coefficients
-    terms = design(*angles(view, light, normal))
-    warmth = np.clip(terms @ np.asarray(coefficients, np.float64), *TINT_RANGE)
-    facing = np.sum(_unit(light) * _unit(normal), axis=-1)
-    warmth = warmth * np.clip(facing / MIN_COSINE, 0.0, 1.0)
+    log, sun_on_face = _fitted_log(view, light, normal, coefficients)
+    warmth = np.clip(log, *TINT_RANGE) * sun_on_face
     return np.exp(warmth[..., None] * np.asarray(AMBIENT_TINT_AXIS, np.float64))
 
 

@@ -39,7 +39,7 @@ def _clamped_cosine(tree, a, b, label):
 
 
 def _monomials(tree, powers, made):
-    """√v^i √l^j p^k for each of twin.TERMS, each made once (both fits share them): sockets, None
+    """√v^i √l^j p^k for each of twin.TERMS, each made once (the three fits share them): sockets, None
     for the constant term (nodes to `made`)."""
     sockets = []
     for exponents in twin.TERMS:
