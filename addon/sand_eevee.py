@@ -8,8 +8,9 @@ light (the Cycles surface scaled by it where Cycles is dimmer; where it is brigh
 sun's part, EEVEE's sand less its ambient, times (balance - 1) added where the sun reaches) and
 the ambient balance on the rest (the sand's ambient, the ambient light at the normal times its
 colour plus what its sheen adds, times the ambient balance less what the scale kept of it,
-added). The sun's direction reaches the group by simple-expression drivers on
-the scene's sun lamp (no Python needed on a farm). Cycles' output is untouched. The Journey
+added; an emission draws no negative light, so what that takes away comes off the scale). The
+sun's direction reaches the group by simple-expression drivers on the scene's sun lamp (no
+Python needed on a farm). Cycles' output is untouched. The Journey
 look's EEVEE output is its own EEVEE Shader (its contrast through one diffuse, the driven sun
 undoing Lambert's cosine) with the glints on top.
 """
@@ -47,10 +48,12 @@ AMBIENT_KEPT, SUN_BOOSTED, LIGHT_CORRECTION = ("Sandscape EEVEE Ambient Kept", "
                                                "Sandscape EEVEE Light Correction")
 AMBIENT_SCALE, AMBIENT_GIVEN = "Sandscape EEVEE Ambient Scale", "Sandscape EEVEE Ambient Given"
 AMBIENT_TINTED = "Sandscape EEVEE Ambient Tinted"  # the ambient balance per channel
+# What keeps the light added positive: what the ambient balance takes comes off the surface's scale.
+POSITIVE = tuple(f"Sandscape EEVEE Light Added ≥ 0 {index}" for index in range(9))
 NODES = (OUTPUT, BALANCE, SUN, SCALE, BOOST, BOOST_COLOR, BOTH, DOWN, UP, DOWN_HELD, UP_HELD, FRAME,
          JOURNEY_SURFACE, BOOST_LIGHT, SUN_IRRADIANCE, GLINTS_WHERE_LIT, AMBIENT_KEPT, SUN_BOOSTED,
          LIGHT_CORRECTION, AMBIENT_SCALE, AMBIENT_GIVEN, SAND_RGB, SUN_PART, SUN_PART_HELD,
-         BOOST_REACH, AMBIENT_TINTED) + SUN_LIGHT + SAND_AMBIENT + SUN_REACH
+         BOOST_REACH, AMBIENT_TINTED) + POSITIVE + SUN_LIGHT + SAND_AMBIENT + SUN_REACH
 REACH_MIN_COSINE = 0.02  # below it the sun's light and the lamp's are both near 0: held
 
 
@@ -70,10 +73,11 @@ def attach(material, scene, look_node, look, glint=None):
         return
     # Before 2026-11-29: the boost a diffuse (it brightened the sky's light too), lit glints in the
     # shade (both looks), the dimming balance scaling the ambient; before 2026-12-07 the ambient
-    # from one probe and not balanced; before 2026-12-08 its balance one factor for all channels.
+    # from one probe and not balanced; before 2026-12-08 its balance one factor for all channels,
+    # and what it took away an emission's negative light, drawn as none.
     older = own.node(tree, GLINTS_WHERE_LIT) is None or own.node(tree, AMBIENT) is None or (
         not journey and any(own.node(tree, name) is None
-                            for name in (AMBIENT_KEPT, AMBIENT_SCALE, SAND_RGB, AMBIENT_TINTED)))
+                            for name in (AMBIENT_KEPT, AMBIENT_SCALE, SAND_RGB, AMBIENT_TINTED, POSITIVE[0])))
     if own.node(tree, OUTPUT) is not None and ((own.node(tree, JOURNEY_SURFACE) is None) == journey or older):
         _remove(tree)  # built for the other look, or an older build
     if journey:
@@ -220,7 +224,6 @@ def _ensure_nodes(tree, look_node):
     scale = h.add_node(tree, "ShaderNodeMixShader", name=SCALE, label="× Balance (below 1)")
     clamped = h.math(tree, "MAXIMUM", down.outputs[0], 0.0)
     clamped.name = DOWN_HELD
-    h.link(tree, clamped.outputs[0], scale.inputs["Fac"])
     # Where it is brighter: the sand's own sun's part (EEVEE's sand less its ambient) times
     # (balance − 1), where the sun reaches.
     up = h.math(tree, "SUBTRACT", ratio, 1.0, label="Balance − 1")
@@ -255,11 +258,25 @@ def _ensure_nodes(tree, look_node):
     given = h.vector_math(tree, "SUBTRACT", ambient_scale.outputs[0], (1.0, 1.0, 1.0),
                           label="K × Tint − min(Balance, 1)")
     given.name = AMBIENT_GIVEN
-    kept = h.vector_math(tree, "MULTIPLY", ambient, given.outputs[0],
-                         label="Sand's Ambient × (K × Tint − min(Balance, 1))")
+    # An emission's negative channels draw as none (EEVEE and Cycles): what the ambient balance
+    # takes away (t, its most negative channel's) comes off the surface's scale instead, and t
+    # times the sand (its ambient and its sun's part) goes back into the light added.
+    taken, taken_nodes = _taken(tree, given.outputs[0])
+    given_back = h.vector_math(tree, "ADD", given.outputs[0], taken, label="+ t")
+    kept = h.vector_math(tree, "MULTIPLY", ambient, given_back.outputs[0],
+                         label="Sand's Ambient × (K × Tint − min(Balance, 1) + t)")
     kept.name = AMBIENT_KEPT
-    correction = h.vector_math(tree, "ADD", boosted.outputs[0], kept.outputs[0], label="Light to Add")
+    sun_back = h.vector_math(tree, "SCALE", held.outputs[0], label="Sun Part × t")
+    h.link(tree, taken, sun_back.inputs["Scale"])
+    scale_fac = h.math(tree, "ADD", clamped.outputs[0], taken, label="Surface Taken")
+    scale_fac.use_clamp = True
+    h.link(tree, scale_fac.outputs[0], scale.inputs["Fac"])
+    kept_and_sun = h.vector_math(tree, "ADD", kept.outputs[0], sun_back.outputs[0])
+    correction = h.vector_math(tree, "ADD", boosted.outputs[0], kept_and_sun.outputs[0], label="Light to Add")
     correction.name = LIGHT_CORRECTION
+    positive = (given_back, sun_back, scale_fac, kept_and_sun, *taken_nodes)
+    for name, node in zip(POSITIVE, positive, strict=True):
+        node.name = name
     boost = h.add_node(tree, "ShaderNodeEmission", name=BOOST, label="As Cycles (light added)",
                        inputs={"Strength": 1.0})
     h.link(tree, correction.outputs[0], boost.inputs["Color"])
@@ -270,8 +287,8 @@ def _ensure_nodes(tree, look_node):
     h.link(tree, both.outputs[0], output.inputs["Surface"])
     frame = h.frame(tree, "EEVEE: Balanced to Cycles", (sun, balance, down, clamped, scale, up, extra, color,
                                                          *made, *ambient_nodes, sand_rgb, sun_part, held,
-                                                         reached, boosted, tinted,
-                                                         ambient_scale, given, kept, correction, boost,
+                                                         reached, boosted, tinted, ambient_scale,
+                                                         given, kept, *positive, correction, boost,
                                                          both, output))
     frame.name = FRAME
     return output
@@ -311,3 +328,15 @@ def _sun_reach(tree, lit, cosine):
     share = named(h.math(tree, "DIVIDE", arrived.outputs["Value"], floor.outputs[0], label="Sun Reaches"))
     share.use_clamp = True
     return share.outputs[0], (irradiance, lamp, arrived, held, at_normal, lambert, floor, share)
+
+
+def _taken(tree, given):
+    """t = max(0, −(the lowest channel of `given`)): what the ambient balance takes away. Returns
+    (the socket, the nodes)."""
+    channels = h.add_node(tree, "ShaderNodeSeparateXYZ")
+    h.link(tree, given, channels.inputs[0])
+    lower = h.math(tree, "MINIMUM", channels.outputs[0], channels.outputs[1])
+    lowest = h.math(tree, "MINIMUM", lower.outputs[0], channels.outputs[2])
+    negated = h.math(tree, "MULTIPLY", lowest.outputs[0], -1.0)
+    held = h.math(tree, "MAXIMUM", negated.outputs[0], 0.0, label="t")
+    return held.outputs[0], (channels, lower, lowest, negated, held)

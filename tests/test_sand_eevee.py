@@ -123,7 +123,9 @@ def test_an_older_balance_boosting_the_sky_too_is_rebuilt(sandscape):
     tree.nodes.remove(tree.nodes[sand_eevee.AMBIENT_SCALE])
     assert bpy.ops.sandscape.add_sand_material() == {"FINISHED"}
     assert sorted(node.name for node in tree.nodes) == fresh
-    given = source(tree.nodes[sand_eevee.AMBIENT_KEPT].inputs[1]).node
+    given_back = source(tree.nodes[sand_eevee.AMBIENT_KEPT].inputs[1]).node
+    given = source(given_back.inputs[0]).node
+    assert given == tree.nodes[sand_eevee.AMBIENT_GIVEN]
     scale = source(given.inputs[0]).node
     tinted = source(scale.inputs[1]).node
     assert source(tinted.inputs["Scale"]) == tree.nodes[sand_eevee.BALANCE].outputs["Ambient Balance"]
@@ -133,6 +135,14 @@ def test_an_older_balance_boosting_the_sky_too_is_rebuilt(sandscape):
     assert sorted(node.name for node in tree.nodes) == fresh
     tinted = tree.nodes[sand_eevee.AMBIENT_TINTED]
     assert source(tinted.inputs[0]) == tree.nodes[sand_eevee.BALANCE].outputs["Ambient Tint"]
+    # A build whose light added went negative where the ambient balance took light away, drawn as
+    # none (before 2026-12-08): what it takes now comes off the surface's scale.
+    for name in sand_eevee.POSITIVE:
+        tree.nodes.remove(tree.nodes[name])
+    tree.links.new(tree.nodes[sand_eevee.DOWN_HELD].outputs[0], tree.nodes[sand_eevee.SCALE].inputs["Fac"])
+    assert bpy.ops.sandscape.add_sand_material() == {"FINISHED"}
+    assert sorted(node.name for node in tree.nodes) == fresh
+    assert source(tree.nodes[sand_eevee.SCALE].inputs["Fac"]).node.name in sand_eevee.POSITIVE
 
 
 def test_the_sands_ambient_follows_its_twin(sandscape):
