@@ -10,9 +10,9 @@ the ambient balance on the rest (the sand's ambient, the ambient light at the no
 colour plus what its sheen adds, times the ambient balance less what the scale kept of it,
 added; an emission draws no negative light, so what that takes away comes off the scale). The
 sun's direction reaches the group by simple-expression drivers on the scene's sun lamp (no
-Python needed on a farm). Cycles' output is untouched. The Journey
-look's EEVEE output is its own EEVEE Shader (its contrast through one diffuse, the driven sun
-undoing Lambert's cosine) with the glints on top.
+Python needed on a farm). Cycles' output is untouched. The Journey look's EEVEE output is its own
+EEVEE Shader (its contrast through one diffuse, the driven sun undoing Lambert's cosine) with the
+glints on top.
 """
 
 import math
